@@ -1,0 +1,8 @@
+#!/usr/bin/env python3
+import sys
+
+from beginner_tutorials.num import num_publisher
+from beginner_tutorials.params import run_node
+
+if __name__ == "__main__":
+    sys.exit(run_node(num_publisher))

@@ -1,0 +1,1 @@
+"""ROS-free physics core of the TurtleBot simulator (PyODE)."""

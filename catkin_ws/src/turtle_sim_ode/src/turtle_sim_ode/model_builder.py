@@ -1,0 +1,355 @@
+"""Build ODE bodies, geoms and joints from a parsed URDF, merging fixed joints like Gazebo."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
+
+import ode
+
+from . import ode_constants as oc
+from .physics import PhysicsWorld, SurfaceParams
+from .urdf_model import Box, Cylinder, Geometry, Joint, ModelError, Pose, RobotModel, Sphere
+
+Vec3 = Tuple[float, float, float]
+Quat = Tuple[float, float, float, float]  # (w, x, y, z), ODE's order, unless named _xyzw
+Transform = Tuple[Vec3, Quat]
+Matrix3 = Tuple[Vec3, Vec3, Vec3]
+
+IDENTITY: Transform = ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
+
+
+# --- rigid transforms (plain floats: cheaper than numpy for 3-vectors) ----------------
+def quat_from_rpy(roll: float, pitch: float, yaw: float) -> Quat:
+    """URDF fixed-axis rpy: Rz(yaw) * Ry(pitch) * Rx(roll)."""
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    return (cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy,
+            cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy)
+
+
+def quat_multiply(a: Quat, b: Quat) -> Quat:
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return (aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw)
+
+
+def quat_rotate(q: Quat, v: Vec3) -> Vec3:
+    w, x, y, z = q
+    # v + 2w(u x v) + 2u x (u x v), u = (x, y, z)
+    tx, ty, tz = 2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]), 2 * (x * v[1] - y * v[0])
+    return (v[0] + w * tx + y * tz - z * ty, v[1] + w * ty + z * tx - x * tz,
+            v[2] + w * tz + x * ty - y * tx)
+
+
+def quat_matrix(q: Quat) -> Matrix3:
+    columns = [quat_rotate(q, axis) for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
+    return tuple(tuple(columns[c][r] for c in range(3)) for r in range(3))  # type: ignore[return-value]
+
+
+def compose(a: Transform, b: Transform) -> Transform:
+    moved = quat_rotate(a[1], b[0])
+    return ((a[0][0] + moved[0], a[0][1] + moved[1], a[0][2] + moved[2]), quat_multiply(a[1], b[1]))
+
+
+def inverse(t: Transform) -> Transform:
+    w, x, y, z = t[1]
+    conjugate = (w, -x, -y, -z)
+    back = quat_rotate(conjugate, t[0])
+    return ((-back[0], -back[1], -back[2]), conjugate)
+
+
+def pose_transform(pose: Pose) -> Transform:
+    return (pose.xyz, quat_from_rpy(*pose.rpy))
+
+
+# --- handles -------------------------------------------------------------------------
+@dataclass(frozen=True)
+class LinkFrame:
+    """Where a URDF link frame sits on its ODE body (whose frame is at the body's COM)."""
+
+    body: ode.Body
+    offset: Transform
+
+
+class JointHandle:
+    """A non-fixed URDF joint: position and velocity with URDF sign conventions."""
+
+    def __init__(self, name: str, joint_type: str, joint: ode.Joint) -> None:
+        self.name = name
+        self.type = joint_type
+        self.joint = joint
+        self._unwrapped = 0.0
+        self._last_wrapped = 0.0
+
+    def angle(self) -> float:
+        """Joint position (rad or m); continuous joints are unwrapped (multi-turn)."""
+        if self.type == "continuous":
+            return self._unwrapped
+        if self.type == "prismatic":
+            return self.joint.getPosition()
+        return self.joint.getAngle()
+
+    def rate(self) -> float:
+        """Joint velocity (rad/s or m/s)."""
+        if self.type == "prismatic":
+            return self.joint.getPositionRate()
+        return self.joint.getAngleRate()
+
+    def track_turns(self) -> None:
+        """Accumulate ODE's [-pi, pi] hinge angle; called after every step."""
+        wrapped = self.joint.getAngle()
+        delta = wrapped - self._last_wrapped
+        if delta > math.pi:
+            delta -= 2 * math.pi
+        elif delta < -math.pi:
+            delta += 2 * math.pi
+        self._unwrapped += delta
+        self._last_wrapped = wrapped
+
+
+def _after_step_hook(continuous: List[JointHandle],
+                     damping: List[Tuple[JointHandle, float]]) -> Callable[[], None]:
+    def after_step() -> None:
+        for handle in continuous:
+            handle.track_turns()
+        for handle, coefficient in damping:
+            # Added now, this acts during the next step (ODE clears forces after each step).
+            effort = -coefficient * handle.rate()
+            if handle.type == "prismatic":
+                handle.joint.addForce(effort)
+            else:
+                handle.joint.addTorque(effort)
+    return after_step
+
+
+class BuiltModel:
+    """One URDF model in a PhysicsWorld: link poses, joints, teleport and removal."""
+
+    def __init__(self, physics: PhysicsWorld, robot: RobotModel, space: ode.SpaceBase,
+                 bodies: List[ode.Body], links: Dict[str, LinkFrame],
+                 joints: Dict[str, JointHandle], damping: List[Tuple[JointHandle, float]]) -> None:
+        self.name = robot.name
+        self.robot = robot
+        self.root_link = robot.root
+        self.links = links
+        self.joints = joints
+        self.bodies = bodies
+        self._physics = physics
+        self._space: Optional[ode.SpaceBase] = space
+        continuous = [j for j in joints.values() if j.type == "continuous"]
+        self._hook: Optional[Callable[[], None]] = None
+        if continuous or damping:
+            # A closure, not a bound method: the world must not reference this model back,
+            # since a reference cycle lets the garbage collector free PyODE objects in an
+            # order that crashes.
+            self._hook = _after_step_hook(continuous, damping)
+            physics.add_post_step_hook(self._hook)
+
+    def _frame(self, link: str) -> LinkFrame:
+        if self._space is None:
+            raise RuntimeError(f"model '{self.name}' was removed")
+        try:
+            return self.links[link]
+        except KeyError:
+            raise KeyError(f"model '{self.name}' has no link '{link}'") from None
+
+    def joint(self, name: str) -> JointHandle:
+        try:
+            return self.joints[name]
+        except KeyError:
+            raise KeyError(f"model '{self.name}' has no movable joint '{name}'") from None
+
+    def link_transform(self, link: str) -> Transform:
+        """World pose of a URDF link frame as (position, quaternion wxyz)."""
+        frame = self._frame(link)
+        return compose((frame.body.getPosition(), frame.body.getQuaternion()), frame.offset)
+
+    def link_pose(self, link: str) -> Tuple[Vec3, Quat]:
+        """World pose of a URDF link frame as (position, quaternion xyzw as in ROS)."""
+        position, (w, x, y, z) = self.link_transform(link)
+        return position, (x, y, z, w)
+
+    def link_twist(self, link: str) -> Tuple[Vec3, Vec3]:
+        """World-frame (linear velocity of the link origin, angular velocity)."""
+        frame = self._frame(link)
+        position, _ = self.link_transform(link)
+        return frame.body.getPointVel(position), frame.body.getAngularVel()
+
+    def set_pose(self, x: float, y: float, z: float,
+                 roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0) -> None:
+        """Teleport so the root link is at this pose; joints keep their positions, velocities
+        become zero."""
+        target = ((x, y, z), quat_from_rpy(roll, pitch, yaw))
+        move = compose(target, inverse(self.link_transform(self.root_link)))
+        for body in self.bodies:
+            position, quaternion = compose(move, (body.getPosition(), body.getQuaternion()))
+            body.setPosition(position)
+            body.setQuaternion(quaternion)
+            body.setLinearVel((0.0, 0.0, 0.0))
+            body.setAngularVel((0.0, 0.0, 0.0))
+
+    def remove(self) -> None:
+        """Destroy all bodies, geoms and joints of this model."""
+        if self._space is None:
+            return
+        if self._hook is not None:
+            self._physics.remove_post_step_hook(self._hook)
+        self._physics.destroy_model_space(self._space)
+        for handle in self.joints.values():
+            handle.joint.attach(None, None)
+        for body in self.bodies:
+            self._physics.forget_body(body)
+            body.disable()
+        # Dropping the last references lets PyODE destroy the ODE objects.
+        self._space = None
+        self.joints = {}
+        self.links = {}
+        self.bodies = []
+        self._hook = None
+
+
+# --- building -----------------------------------------------------------------------
+def _inertia_about_com(parts: Sequence[Tuple[float, Vec3, Matrix3]]) -> Tuple[float, Vec3, Matrix3]:
+    """Total mass, COM and inertia about the COM of point-mass-plus-inertia parts."""
+    mass = sum(m for m, _, _ in parts)
+    com = tuple(sum(m * c[i] for m, c, _ in parts) / mass for i in range(3))
+    inertia = [[0.0] * 3 for _ in range(3)]
+    for m, c, local in parts:
+        d = [c[i] - com[i] for i in range(3)]
+        d2 = d[0] ** 2 + d[1] ** 2 + d[2] ** 2
+        for r in range(3):
+            for k in range(3):
+                # Parallel-axis theorem: I + m(|d|^2 E - d d^T).
+                inertia[r][k] += local[r][k] + m * ((d2 if r == k else 0.0) - d[r] * d[k])
+    return mass, com, tuple(tuple(row) for row in inertia)  # type: ignore[return-value]
+
+
+def _rotated_inertia(q: Quat, inertia: Matrix3) -> Matrix3:
+    rot = quat_matrix(q)
+    return tuple(tuple(sum(rot[r][a] * inertia[a][b] * rot[k][b] for a in range(3) for b in range(3))
+                       for k in range(3)) for r in range(3))  # type: ignore[return-value]
+
+
+def _create_geom(space: ode.SpaceBase, geometry: Geometry) -> ode.GeomObject:
+    if isinstance(geometry, Box):
+        return ode.GeomBox(space, geometry.size)
+    if isinstance(geometry, Cylinder):
+        return ode.GeomCylinder(space, geometry.radius, geometry.length)
+    if isinstance(geometry, Sphere):
+        return ode.GeomSphere(space, geometry.radius)
+    raise ModelError(f"unsupported geometry {geometry!r}")
+
+
+def _surface_for(robot: RobotModel, link: str, default: SurfaceParams) -> SurfaceParams:
+    tags = robot.surfaces.get(link)
+    if tags is None:
+        return default
+    return SurfaceParams(
+        mu=default.mu if tags.mu1 is None else tags.mu1,
+        mu2=default.mu2 if tags.mu2 is None else tags.mu2,
+        kp=default.kp if tags.kp is None else tags.kp,
+        kd=default.kd if tags.kd is None else tags.kd)
+
+
+def build_model(physics: PhysicsWorld, robot: RobotModel,
+                pose: Sequence[float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+                self_collide: bool = False) -> BuiltModel:
+    """Create the model with its root link at pose (x, y, z, roll, pitch, yaw).
+
+    Links attached by fixed joints are merged into their parent's body (mass, COM and
+    inertia combined, collisions kept). ODE bodies sit at their COM, oriented like the
+    link that owns them; each link remembers its offset on the body.
+    """
+    if len(pose) != 6 or not all(math.isfinite(v) for v in pose):
+        raise ValueError(f"pose must be 6 finite numbers (x, y, z, roll, pitch, yaw), got {pose!r}")
+    world_of: Dict[str, Transform] = {robot.root: ((pose[0], pose[1], pose[2]), quat_from_rpy(*pose[3:]))}
+    owner: Dict[str, str] = {robot.root: robot.root}  # link -> link whose body carries it
+    child_joints: Dict[str, List[Joint]] = {}
+    for joint in robot.joints.values():
+        child_joints.setdefault(joint.parent, []).append(joint)
+    order = [robot.root]
+    for link in order:  # breadth-first; ``order`` grows while iterating
+        for joint in child_joints.get(link, []):
+            world_of[joint.child] = compose(world_of[link], pose_transform(joint.origin))
+            owner[joint.child] = owner[link] if joint.type == "fixed" else joint.child
+            order.append(joint.child)
+
+    space = physics.create_model_space(self_collide)
+    bodies: Dict[str, ode.Body] = {}
+    links: Dict[str, LinkFrame] = {}
+    try:
+        for body_link in [link for link in order if owner[link] == link]:
+            members = [link for link in order if owner[link] == body_link]
+            to_body_link = inverse(world_of[body_link])
+            relative = {m: compose(to_body_link, world_of[m]) for m in members}
+            parts = []
+            for member in members:
+                inertial = robot.links[member].inertial
+                if inertial is None:
+                    continue
+                position, rotation = compose(relative[member], pose_transform(inertial.origin))
+                parts.append((inertial.mass, position, _rotated_inertia(rotation, inertial.matrix())))
+            if not parts:
+                raise ModelError(f"link '{body_link}' and the links fixed to it have no "
+                                 f"<inertial>; a moving body needs mass")
+            mass, com, inertia = _inertia_about_com(parts)
+            body = ode.Body(physics.world)
+            ode_mass = ode.Mass()
+            ode_mass.setParameters(mass, 0.0, 0.0, 0.0, inertia[0][0], inertia[1][1], inertia[2][2],
+                                   inertia[0][1], inertia[0][2], inertia[1][2])
+            body.setMass(ode_mass)
+            body_pose = compose(world_of[body_link], (com, (1.0, 0.0, 0.0, 0.0)))
+            body.setPosition(body_pose[0])
+            body.setQuaternion(body_pose[1])
+            bodies[body_link] = body
+            for member in members:
+                offset = compose(((-com[0], -com[1], -com[2]), (1.0, 0.0, 0.0, 0.0)), relative[member])
+                links[member] = LinkFrame(body, offset)
+                surface = _surface_for(robot, member, physics.params.default_surface)
+                for collision in robot.links[member].collisions:
+                    geom = _create_geom(space, collision.geometry)
+                    geom.setBody(body)
+                    geom_offset = compose(offset, pose_transform(collision.origin))
+                    geom.setOffsetPosition(geom_offset[0])
+                    geom.setOffsetQuaternion(geom_offset[1])
+                    physics.register_geom(geom, surface)
+
+        joints: Dict[str, JointHandle] = {}
+        damping: List[Tuple[JointHandle, float]] = []
+        for joint in robot.joints.values():
+            if joint.type == "fixed":
+                continue
+            child, parent = bodies[joint.child], bodies[owner[joint.parent]]
+            anchor, rotation = world_of[joint.child]
+            axis = quat_rotate(rotation, joint.axis)
+            if joint.type == "prismatic":
+                ode_joint = ode.SliderJoint(physics.world)
+            else:
+                ode_joint = ode.HingeJoint(physics.world)
+            # ODE measures body1 relative to body2: child first gives URDF's sign.
+            ode_joint.attach(child, parent)
+            if joint.type != "prismatic":
+                ode_joint.setAnchor(anchor)
+            ode_joint.setAxis(axis)
+            if joint.type != "continuous" and joint.limits is not None:
+                ode_joint.setParam(oc.PARAM_LO_STOP, joint.limits.lower)
+                ode_joint.setParam(oc.PARAM_HI_STOP, joint.limits.upper)
+            if joint.dynamics.friction > 0:
+                # Gazebo's joint friction: a zero-velocity motor limited to the friction force.
+                ode_joint.setParam(oc.PARAM_VEL, 0.0)
+                ode_joint.setParam(oc.PARAM_FMAX, joint.dynamics.friction)
+            physics.exclude_collision(child, parent)
+            handle = JointHandle(joint.name, joint.type, ode_joint)
+            joints[joint.name] = handle
+            if joint.dynamics.damping > 0:
+                damping.append((handle, joint.dynamics.damping))
+    except Exception:
+        physics.destroy_model_space(space)
+        for body in bodies.values():
+            physics.forget_body(body)
+            body.disable()
+        raise
+    return BuiltModel(physics, robot, space, list(bodies.values()), links, joints, damping)

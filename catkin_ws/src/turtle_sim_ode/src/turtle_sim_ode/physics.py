@@ -1,0 +1,309 @@
+"""ODE world with a ground plane, Gazebo-style contact surfaces and a fixed step."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable, Dict, List, Optional, Sequence, Set, Tuple
+
+import ode
+
+from . import ode_constants as oc
+
+SOLVERS = ("quick", "world")
+
+# Gazebo's ODE contact: axis-dependent friction pyramid scaled by the normal force,
+# spring-damper softness from kp/kd.
+_CONTACT_MODE = oc.CONTACT_MU2 | oc.CONTACT_SOFT_ERP | oc.CONTACT_SOFT_CFM | oc.CONTACT_APPROX1
+
+# (mode, mu, mu2, soft_erp, soft_cfm) as set on every ode.Contact of a geom pair.
+ContactSurface = Tuple[int, float, float, float, float]
+# How a geom pair's contacts are made: surface, and whether a line contact is merged.
+PairContact = Tuple[ContactSurface, bool]
+
+
+# PyODE frees an ode.World's C object when the wrapper dies, and dWorldDestroy frees
+# every body and joint in it; bodies or joints whose wrappers die later (routine when
+# the garbage collector breaks a reference cycle) are then freed twice and the process
+# crashes. Worlds are therefore kept for the life of the process (a few hundred bytes
+# each); bodies, joints and geoms are still freed with their wrappers.
+_WORLDS_KEPT_ALIVE: List[ode.World] = []
+
+
+def _finite(value: float) -> bool:
+    return isinstance(value, (int, float)) and math.isfinite(value)
+
+
+@dataclass(frozen=True)
+class SurfaceParams:
+    """Friction and contact stiffness of one geom (Gazebo <mu1> <mu2> <kp> <kd>)."""
+
+    mu: float = 1.0
+    mu2: float = 1.0
+    kp: float = 1e12
+    kd: float = 1.0
+
+    def validate(self, name: str = "surface") -> None:
+        """Raise ValueError naming the first bad field."""
+        for attr in ("mu", "mu2", "kd"):
+            value = getattr(self, attr)
+            if not _finite(value) or value < 0:
+                raise ValueError(f"{name}.{attr} must be finite and >= 0, got {value!r}")
+        if not _finite(self.kp) or self.kp <= 0:
+            raise ValueError(f"{name}.kp must be finite and > 0, got {self.kp!r}")
+
+
+def combine_surfaces(a: SurfaceParams, b: SurfaceParams, time_step: float) -> ContactSurface:
+    """Gazebo's rule: min friction, springs in series, dampers in parallel."""
+    kp = 1.0 / (1.0 / a.kp + 1.0 / b.kp)
+    kd = a.kd + b.kd
+    denominator = time_step * kp + kd
+    return (_CONTACT_MODE, min(a.mu, b.mu), min(a.mu2, b.mu2),
+            time_step * kp / denominator, 1.0 / denominator)
+
+
+@dataclass
+class PhysicsParams:
+    """World-wide solver and contact settings."""
+
+    time_step: float = 0.001
+    solver: str = "quick"
+    solver_iterations: int = 50
+    gravity: Tuple[float, float, float] = (0.0, 0.0, -9.81)
+    erp: float = 0.2
+    cfm: float = 1e-5
+    max_contacts: int = 4
+    contact_max_correcting_vel: float = 100.0
+    contact_surface_layer: float = 0.0001
+    default_surface: SurfaceParams = field(default_factory=SurfaceParams)
+    # Gazebo's ground_plane model surface.
+    ground_surface: SurfaceParams = field(
+        default_factory=lambda: SurfaceParams(mu=100.0, mu2=50.0))
+
+    def validate(self) -> None:
+        """Raise ValueError naming the bad field and its value."""
+        if not _finite(self.time_step) or not 0 < self.time_step <= 0.1:
+            raise ValueError(f"time_step must be in (0, 0.1] s, got {self.time_step!r}")
+        if self.solver not in SOLVERS:
+            raise ValueError(f"solver must be one of {SOLVERS}, got {self.solver!r}")
+        if (not isinstance(self.solver_iterations, int) or isinstance(self.solver_iterations, bool)
+                or not 1 <= self.solver_iterations <= 1000):
+            raise ValueError(
+                f"solver_iterations must be an integer in 1..1000, got {self.solver_iterations!r}")
+        if len(self.gravity) != 3 or not all(_finite(g) for g in self.gravity):
+            raise ValueError(f"gravity must be 3 finite numbers, got {self.gravity!r}")
+        if not _finite(self.erp) or not 0 <= self.erp <= 1:
+            raise ValueError(f"erp must be in [0, 1], got {self.erp!r}")
+        if not _finite(self.cfm) or self.cfm < 0:
+            raise ValueError(f"cfm must be finite and >= 0, got {self.cfm!r}")
+        if (not isinstance(self.max_contacts, int) or isinstance(self.max_contacts, bool)
+                or not 1 <= self.max_contacts <= 64):
+            raise ValueError(f"max_contacts must be an integer in 1..64, got {self.max_contacts!r}")
+        for name in ("contact_max_correcting_vel", "contact_surface_layer"):
+            value = getattr(self, name)
+            if not _finite(value) or value < 0:
+                raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
+        self.default_surface.validate("default_surface")
+        self.ground_surface.validate("ground_surface")
+
+
+def _merge_line_contact(contacts: Sequence[ode.Contact]) -> Sequence[ode.Contact]:
+    """Replace the two end points of a line contact by its centre of pressure.
+
+    A cylinder lying on a surface touches it along a line, but ODE reports only the
+    line's two ends. Their friction scrubs against each other when the cylinder pivots:
+    a wheel pair turning in place then turns ~8 % slower than commanded, because the
+    robot settles where one end point sticks. One contact at the centre of pressure of
+    the (linear, as for a spring foundation) pressure profile pivots freely.
+    """
+    first, second = contacts
+    pos1, normal1, depth1, geom1, geom2 = first.getContactGeomParams()
+    pos2, normal2, depth2, _, _ = second.getContactGeomParams()
+    if normal1[0] * normal2[0] + normal1[1] * normal2[1] + normal1[2] * normal2[2] < 0.999:
+        return contacts  # not one flat line contact
+    total = depth1 + depth2
+    # Centroid of a trapezoid of heights depth1, depth2, as a fraction from pos1.
+    t = (depth1 + 2.0 * depth2) / (3.0 * total) if total > 0 else 0.5
+    first.setContactGeomParams(
+        (pos1[0] + t * (pos2[0] - pos1[0]), pos1[1] + t * (pos2[1] - pos1[1]),
+         pos1[2] + t * (pos2[2] - pos1[2])),
+        normal1, depth1 + t * (depth2 - depth1), geom1, geom2)
+    return (first,)
+
+
+class PhysicsWorld:
+    """ODE world, collision spaces, ground plane at z=0 and a fixed-step clock.
+
+    Each model gets its own sub-space (see ``create_model_space``) so pairs inside a
+    model are never tested unless the model asks for self-collision. The ground
+    plane lives outside every space: its AABB is infinite, so a broadphase adds
+    nothing and each registered dynamic geom is tested against it directly.
+    """
+
+    def __init__(self, params: Optional[PhysicsParams] = None) -> None:
+        self.params = params if params is not None else PhysicsParams()
+        self.params.validate()
+        p = self.params
+        self.world = ode.World()
+        _WORLDS_KEPT_ALIVE.append(self.world)
+        self.world.setGravity(tuple(p.gravity))
+        self.world.setERP(p.erp)
+        self.world.setCFM(p.cfm)
+        self.world.setQuickStepNumIterations(p.solver_iterations)
+        self.world.setContactMaxCorrectingVel(p.contact_max_correcting_vel)
+        self.world.setContactSurfaceLayer(p.contact_surface_layer)
+        self.space = ode.HashSpace()
+        self.ground = ode.GeomPlane(None, (0.0, 0.0, 1.0), 0.0)
+        self._contact_group = ode.JointGroup()
+        self._stepper = self.world.quickStep if p.solver == "quick" else self.world.step
+        self._steps = 0
+        self._contact_count = 0
+        self._static_space: Optional[ode.SpaceBase] = None
+        self._self_colliding: List[ode.SpaceBase] = []
+        self._surfaces: Dict[ode.GeomObject, SurfaceParams] = {self.ground: p.ground_surface}
+        # (geom, body, contact) of every dynamic geom, tested against the ground.
+        self._ground_tests: List[Tuple[ode.GeomObject, ode.Body, PairContact]] = []
+        self._pair_cache: Dict[Tuple[ode.GeomObject, ode.GeomObject], PairContact] = {}
+        self._jointed: Set[Tuple[ode.Body, ode.Body]] = set()
+        self._post_step_hooks: List[Callable[[], None]] = []
+
+    def __del__(self) -> None:
+        # PyODE's JointGroup destructor frees its ODE joints without telling their
+        # Python wrappers, which then free them again: empty the group first.
+        group = getattr(self, "_contact_group", None)
+        if group is not None:
+            group.empty()
+
+    # --- clock -----------------------------------------------------------------
+    @property
+    def sim_time(self) -> float:
+        """Simulated seconds since creation or the last ``reset_time``."""
+        return self._steps * self.params.time_step
+
+    @property
+    def time_step(self) -> float:
+        return self.params.time_step
+
+    @property
+    def contact_count(self) -> int:
+        """Contact joints created in the last step."""
+        return self._contact_count
+
+    def reset_time(self) -> None:
+        self._steps = 0
+
+    # --- spaces and geoms ---------------------------------------------------------
+    def create_model_space(self, self_collide: bool = False) -> ode.SpaceBase:
+        """A sub-space for one model's geoms; pairs inside it collide only if asked."""
+        space = ode.SimpleSpace(self.space)
+        if self_collide:
+            self._self_colliding.append(space)
+        return space
+
+    def destroy_model_space(self, space: ode.SpaceBase) -> None:
+        """Unregister and remove every geom of ``space``, then the space itself."""
+        for geom in [space.getGeom(i) for i in range(space.getNumGeoms())]:
+            self.unregister_geom(geom)
+            space.remove(geom)
+        if space in self._self_colliding:
+            self._self_colliding.remove(space)
+        self.space.remove(space)
+
+    @property
+    def static_space(self) -> ode.SpaceBase:
+        """Space for body-less obstacles (created on first use to keep steps cheap)."""
+        if self._static_space is None:
+            self._static_space = ode.SimpleSpace(self.space)
+        return self._static_space
+
+    def register_geom(self, geom: ode.GeomObject, surface: Optional[SurfaceParams] = None) -> None:
+        """Give ``geom`` a surface; geoms on a body are also tested against the ground."""
+        surface = surface if surface is not None else self.params.default_surface
+        surface.validate("surface")
+        self.unregister_geom(geom)
+        self._surfaces[geom] = surface
+        body = geom.getBody()
+        if body is not None:
+            self._ground_tests.append((geom, body, self._pair_contact(self.ground, geom)))
+
+    def unregister_geom(self, geom: ode.GeomObject) -> None:
+        if self._surfaces.pop(geom, None) is None:
+            return
+        self._ground_tests = [t for t in self._ground_tests if t[0] is not geom]
+        for pair in [pair for pair in self._pair_cache if geom in pair]:
+            del self._pair_cache[pair]
+
+    def exclude_collision(self, body_a: ode.Body, body_b: ode.Body) -> None:
+        """Never collide these two bodies (they are connected by a joint)."""
+        self._jointed.add((body_a, body_b))
+        self._jointed.add((body_b, body_a))
+
+    def forget_body(self, body: ode.Body) -> None:
+        """Drop ``body`` from the exclusion table before it is destroyed."""
+        self._jointed = {pair for pair in self._jointed if body not in pair}
+
+    def add_post_step_hook(self, hook: Callable[[], None]) -> None:
+        """Call ``hook()`` after every step (e.g. to track joint turns)."""
+        self._post_step_hooks.append(hook)
+
+    def remove_post_step_hook(self, hook: Callable[[], None]) -> None:
+        self._post_step_hooks.remove(hook)
+
+    # --- stepping ----------------------------------------------------------------
+    def step(self) -> None:
+        """Collide, then advance exactly one fixed time step."""
+        self._contact_group.empty()
+        self._contact_count = 0
+        ground = self.ground
+        collide = ode.collide
+        for geom, body, pair in self._ground_tests:
+            contacts = collide(ground, geom)
+            if contacts:
+                self._add_contacts(contacts, None, body, pair)
+        if self.space.getNumGeoms() > 1:
+            self.space.collide(None, self._near)
+        for space in self._self_colliding:
+            space.collide(None, self._near)
+        self._stepper(self.params.time_step)
+        self._steps += 1
+        for hook in self._post_step_hooks:
+            hook()
+
+    def _near(self, _data: object, geom1: ode.GeomObject, geom2: ode.GeomObject) -> None:
+        if geom1.isSpace() or geom2.isSpace():
+            ode.collide2(geom1, geom2, None, self._near)
+            return
+        body1 = geom1.getBody()
+        body2 = geom2.getBody()
+        if body1 is body2 or (body1, body2) in self._jointed:
+            return
+        contacts = ode.collide(geom1, geom2)
+        if contacts:
+            self._add_contacts(contacts, body1, body2, self._pair_contact(geom1, geom2))
+
+    def _pair_contact(self, geom1: ode.GeomObject, geom2: ode.GeomObject) -> PairContact:
+        key = (geom1, geom2)
+        pair = self._pair_cache.get(key)
+        if pair is None:
+            default = self.params.default_surface
+            pair = (combine_surfaces(self._surfaces.get(geom1, default),
+                                     self._surfaces.get(geom2, default), self.time_step),
+                    isinstance(geom1, ode.GeomCylinder) or isinstance(geom2, ode.GeomCylinder))
+            self._pair_cache[key] = pair
+        return pair
+
+    def _add_contacts(self, contacts: Sequence[ode.Contact], body1: Optional[ode.Body],
+                      body2: Optional[ode.Body], pair: PairContact) -> None:
+        (mode, mu, mu2, erp, cfm), merge_line = pair
+        if merge_line and len(contacts) == 2:
+            contacts = _merge_line_contact(contacts)
+        elif len(contacts) > self.params.max_contacts:
+            contacts = contacts[:self.params.max_contacts]
+        world, group = self.world, self._contact_group
+        for contact in contacts:
+            contact.setMode(mode)
+            contact.setMu(mu)
+            contact.setMu2(mu2)
+            contact.setSoftERP(erp)
+            contact.setSoftCFM(cfm)
+            ode.ContactJoint(world, group, contact).attach(body1, body2)
+        self._contact_count += len(contacts)

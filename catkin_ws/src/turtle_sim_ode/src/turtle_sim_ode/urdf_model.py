@@ -1,0 +1,397 @@
+"""Parse and validate a URDF string (no xacro, no file access) into plain dataclasses."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Tuple, Union
+from xml.etree.ElementTree import Element, ParseError
+
+import defusedxml
+import defusedxml.ElementTree as SafeET
+
+Vec3 = Tuple[float, float, float]
+
+MAX_LINKS = 1000
+MAX_JOINTS = 1000
+MAX_URDF_CHARS = 10_000_000
+JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
+# Stand-in for a mesh collision: mesh files are never opened, so their size is unknown.
+MESH_PLACEHOLDER_EDGE = 0.01
+SURFACE_TAGS = {"mu1": "mu1", "mu2": "mu2", "kp": "kp", "kd": "kd",
+                "maxVel": "max_vel", "minDepth": "min_depth"}
+
+
+class ModelError(ValueError):
+    """The URDF is malformed or describes a model that cannot be simulated."""
+
+
+@dataclass(frozen=True)
+class Pose:
+    """URDF <origin>: translation and fixed-axis roll, pitch, yaw."""
+
+    xyz: Vec3 = (0.0, 0.0, 0.0)
+    rpy: Vec3 = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Inertial:
+    mass: float
+    origin: Pose
+    ixx: float
+    ixy: float
+    ixz: float
+    iyy: float
+    iyz: float
+    izz: float
+
+    def matrix(self) -> Tuple[Vec3, Vec3, Vec3]:
+        return ((self.ixx, self.ixy, self.ixz),
+                (self.ixy, self.iyy, self.iyz),
+                (self.ixz, self.iyz, self.izz))
+
+
+@dataclass(frozen=True)
+class Box:
+    size: Vec3
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    """Axis along the collision frame's z, like ODE's cylinder."""
+
+    radius: float
+    length: float
+
+
+@dataclass(frozen=True)
+class Sphere:
+    radius: float
+
+
+Geometry = Union[Box, Cylinder, Sphere]
+
+
+@dataclass(frozen=True)
+class Collision:
+    name: str
+    origin: Pose
+    geometry: Geometry
+
+
+@dataclass
+class Link:
+    name: str
+    inertial: Optional[Inertial] = None
+    collisions: List[Collision] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class JointLimits:
+    lower: float = 0.0
+    upper: float = 0.0
+    effort: float = 0.0
+    velocity: float = 0.0
+
+
+@dataclass(frozen=True)
+class JointDynamics:
+    damping: float = 0.0
+    friction: float = 0.0
+
+
+@dataclass(frozen=True)
+class Joint:
+    name: str
+    type: str
+    parent: str
+    child: str
+    origin: Pose = Pose()
+    axis: Vec3 = (1.0, 0.0, 0.0)
+    limits: Optional[JointLimits] = None
+    dynamics: JointDynamics = JointDynamics()
+
+
+@dataclass(frozen=True)
+class GazeboSurface:
+    """<gazebo reference="link"> contact tags; None where the URDF says nothing."""
+
+    mu1: Optional[float] = None
+    mu2: Optional[float] = None
+    kp: Optional[float] = None
+    kd: Optional[float] = None
+    max_vel: Optional[float] = None
+    min_depth: Optional[float] = None
+
+
+@dataclass(frozen=True)
+class GazeboPlugin:
+    filename: str
+    name: str
+    params: Dict[str, str]
+
+
+@dataclass
+class RobotModel:
+    name: str
+    links: Dict[str, Link]
+    joints: Dict[str, Joint]
+    root: str
+    surfaces: Dict[str, GazeboSurface] = field(default_factory=dict)
+    plugins: List[GazeboPlugin] = field(default_factory=list)
+    warnings: List[str] = field(default_factory=list)
+
+    def plugin(self, filename: str) -> Optional[GazeboPlugin]:
+        """The first plugin loaded from ``filename`` (e.g. 'libgazebo_ros_kobuki.so')."""
+        return next((p for p in self.plugins if p.filename == filename), None)
+
+
+# --- small parsing helpers ------------------------------------------------------
+def _number(text: Optional[str], what: str) -> float:
+    try:
+        value = float(text)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise ModelError(f"{what}: expected a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise ModelError(f"{what}: number must be finite, got {text!r}")
+    return value
+
+
+def _vec3(text: Optional[str], what: str, default: Vec3) -> Vec3:
+    if text is None:
+        return default
+    parts = text.split()
+    if len(parts) != 3:
+        raise ModelError(f"{what}: expected 3 numbers, got {text!r}")
+    return (_number(parts[0], what), _number(parts[1], what), _number(parts[2], what))
+
+
+def _pose(element: Optional[Element], what: str) -> Pose:
+    if element is None:
+        return Pose()
+    return Pose(_vec3(element.get("xyz"), f"{what} origin xyz", (0.0, 0.0, 0.0)),
+                _vec3(element.get("rpy"), f"{what} origin rpy", (0.0, 0.0, 0.0)))
+
+
+def _required(element: Element, attribute: str, what: str) -> str:
+    value = element.get(attribute)
+    if not value:
+        raise ModelError(f"{what}: missing attribute '{attribute}'")
+    return value
+
+
+def _positive(value: float, what: str) -> float:
+    if value <= 0:
+        raise ModelError(f"{what} must be > 0, got {value}")
+    return value
+
+
+def _is_positive_definite(m: Tuple[Vec3, Vec3, Vec3]) -> bool:
+    """Sylvester's criterion on a symmetric 3x3 matrix."""
+    minor2 = m[0][0] * m[1][1] - m[0][1] * m[1][0]
+    det = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+           - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+           + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    return m[0][0] > 0 and minor2 > 0 and det > 0
+
+
+# --- elements ----------------------------------------------------------------------
+def _parse_inertial(element: Element, link: str) -> Inertial:
+    what = f"link '{link}' inertial"
+    mass_element = element.find("mass")
+    if mass_element is None:
+        raise ModelError(f"{what}: missing <mass>")
+    mass = _number(mass_element.get("value"), f"{what} mass")
+    if mass <= 0:
+        raise ModelError(f"{what}: mass must be > 0, got {mass}")
+    inertia = element.find("inertia")
+    if inertia is None:
+        raise ModelError(f"{what}: missing <inertia>")
+    values = {k: _number(inertia.get(k, "0"), f"{what} {k}")
+              for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    result = Inertial(mass, _pose(element.find("origin"), what), **values)
+    if not _is_positive_definite(result.matrix()):
+        raise ModelError(f"{what}: inertia matrix is not positive definite "
+                         f"(ixx={values['ixx']}, iyy={values['iyy']}, izz={values['izz']}, "
+                         f"ixy={values['ixy']}, ixz={values['ixz']}, iyz={values['iyz']})")
+    return result
+
+
+def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) -> Geometry:
+    shape = None if element is None else next(iter(element), None)
+    if shape is None:
+        raise ModelError(f"{what}: missing <geometry> shape")
+    if shape.tag == "box":
+        size = _vec3(shape.get("size"), f"{what} box size", (0.0, 0.0, 0.0))
+        for value in size:
+            _positive(value, f"{what} box size")
+        return Box(size)
+    if shape.tag == "cylinder":
+        return Cylinder(_positive(_number(shape.get("radius"), f"{what} cylinder radius"),
+                                  f"{what} cylinder radius"),
+                        _positive(_number(shape.get("length"), f"{what} cylinder length"),
+                                  f"{what} cylinder length"))
+    if shape.tag == "sphere":
+        return Sphere(_positive(_number(shape.get("radius"), f"{what} sphere radius"),
+                                f"{what} sphere radius"))
+    if shape.tag == "mesh":
+        scale = _vec3(shape.get("scale"), f"{what} mesh scale", (1.0, 1.0, 1.0))
+        size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
+        for value in size:
+            _positive(value, f"{what} mesh scale")
+        warnings.append(f"{what}: mesh '{shape.get('filename', '')}' is not loaded; "
+                        f"colliding with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead")
+        return Box(size)  # type: ignore[arg-type]
+    raise ModelError(f"{what}: unsupported geometry <{shape.tag}>")
+
+
+def _parse_link(element: Element, warnings: List[str]) -> Link:
+    name = _required(element, "name", "<link>")
+    inertial = element.find("inertial")
+    link = Link(name, _parse_inertial(inertial, name) if inertial is not None else None)
+    for index, collision in enumerate(element.findall("collision")):
+        what = f"link '{name}' collision {collision.get('name') or index}"
+        link.collisions.append(Collision(
+            collision.get("name") or f"{name}_collision_{index}",
+            _pose(collision.find("origin"), what),
+            _parse_geometry(collision.find("geometry"), what, warnings)))
+    return link
+
+
+def _parse_joint(element: Element) -> Joint:
+    name = _required(element, "name", "<joint>")
+    what = f"joint '{name}'"
+    joint_type = _required(element, "type", what)
+    if joint_type not in JOINT_TYPES:
+        raise ModelError(f"{what}: unsupported type '{joint_type}' (supported: {JOINT_TYPES})")
+    parent, child = element.find("parent"), element.find("child")
+    if parent is None or child is None:
+        raise ModelError(f"{what}: needs <parent link=...> and <child link=...>")
+    axis_element = element.find("axis")
+    axis = _vec3(None if axis_element is None else axis_element.get("xyz"), f"{what} axis",
+                 (1.0, 0.0, 0.0))
+    norm = math.sqrt(sum(a * a for a in axis))
+    if joint_type != "fixed" and norm < 1e-9:
+        raise ModelError(f"{what}: axis must not be zero")
+    limit = element.find("limit")
+    limits = None
+    if limit is not None:
+        limits = JointLimits(
+            *(_number(limit.get(k, "0"), f"{what} limit {k}")
+              for k in ("lower", "upper", "effort", "velocity")))
+        if limits.lower > limits.upper:
+            raise ModelError(f"{what}: limit lower {limits.lower} > upper {limits.upper}")
+    elif joint_type in ("revolute", "prismatic"):
+        raise ModelError(f"{what}: a {joint_type} joint needs <limit>")
+    dynamics = element.find("dynamics")
+    return Joint(
+        name, joint_type,
+        _required(parent, "link", f"{what} <parent>"), _required(child, "link", f"{what} <child>"),
+        _pose(element.find("origin"), what),
+        tuple(a / norm for a in axis) if norm > 0 else axis,  # type: ignore[arg-type]
+        limits,
+        JointDynamics() if dynamics is None else JointDynamics(
+            _number(dynamics.get("damping", "0"), f"{what} damping"),
+            _number(dynamics.get("friction", "0"), f"{what} friction")))
+
+
+def _tag_value(element: Element) -> Optional[str]:
+    """Gazebo tags come as <mu1>1</mu1> or, in old files, <mu1 value="1"/>."""
+    text = element.get("value") if element.get("value") is not None else element.text
+    return text.strip() if text is not None else None
+
+
+def _parse_gazebo(element: Element, model: RobotModel) -> None:
+    reference = element.get("reference")
+    if reference is None:
+        for plugin in element.findall("plugin"):
+            model.plugins.append(GazeboPlugin(
+                _required(plugin, "filename", "<gazebo><plugin>"),
+                plugin.get("name", ""),
+                {child.tag: (child.text or "").strip() for child in plugin}))
+        return
+    values = {}
+    for child in element:
+        if child.tag in SURFACE_TAGS:
+            values[SURFACE_TAGS[child.tag]] = _number(
+                _tag_value(child), f"<gazebo reference='{reference}'> {child.tag}")
+    if not values:
+        return
+    if reference not in model.links:
+        model.warnings.append(f"<gazebo reference='{reference}'>: no such link, ignored")
+        return
+    previous = model.surfaces.get(reference, GazeboSurface())
+    merged = {k: getattr(previous, k) for k in SURFACE_TAGS.values()}
+    merged.update(values)
+    model.surfaces[reference] = GazeboSurface(**merged)
+
+
+# --- validation -----------------------------------------------------------------------
+def _find_root(links: Dict[str, Link], joints: Dict[str, Joint]) -> str:
+    parent_of: Dict[str, str] = {}
+    for joint in joints.values():
+        for role, link in (("parent", joint.parent), ("child", joint.child)):
+            if link not in links:
+                raise ModelError(f"joint '{joint.name}': {role} link '{link}' does not exist")
+        if joint.child in parent_of:
+            raise ModelError(f"link '{joint.child}' has two parents: "
+                             f"'{parent_of[joint.child]}' and '{joint.parent}'")
+        if joint.parent == joint.child:
+            raise ModelError(f"joint '{joint.name}' connects link '{joint.child}' to itself")
+        parent_of[joint.child] = joint.parent
+    roots = [name for name in links if name not in parent_of]
+    if len(roots) > 1:
+        raise ModelError(f"model has {len(roots)} root links {roots}; exactly one is required")
+    if not roots:
+        raise ModelError("model has no root link: its joints form a cycle")
+    children: Dict[str, List[str]] = {}
+    for child, parent in parent_of.items():
+        children.setdefault(parent, []).append(child)
+    reached, stack = set(), [roots[0]]
+    while stack:
+        link = stack.pop()
+        reached.add(link)
+        stack.extend(children.get(link, []))
+    unreached = [name for name in links if name not in reached]
+    if unreached:
+        raise ModelError(f"joints form a cycle through links {unreached}")
+    return roots[0]
+
+
+def parse_urdf(text: str) -> RobotModel:
+    """Parse a URDF document; raise ModelError with a clear message on any problem."""
+    if len(text) > MAX_URDF_CHARS:
+        raise ModelError(f"URDF is {len(text)} characters, more than the {MAX_URDF_CHARS} allowed")
+    try:
+        robot = SafeET.fromstring(text)
+    except ParseError as error:
+        line, column = error.position
+        raise ModelError(f"URDF is not well-formed XML at line {line}, column {column}: "
+                         f"{error}") from None
+    except defusedxml.DefusedXmlException as error:
+        raise ModelError(f"URDF rejected by the XML guard: {error}") from None
+    if robot.tag != "robot":
+        raise ModelError(f"URDF root element must be <robot>, got <{robot.tag}>")
+    name = _required(robot, "name", "<robot>")
+    link_elements, joint_elements = robot.findall("link"), robot.findall("joint")
+    if not link_elements:
+        raise ModelError("URDF has no <link>")
+    if len(link_elements) > MAX_LINKS or len(joint_elements) > MAX_JOINTS:
+        raise ModelError(f"model too large: {len(link_elements)} links, {len(joint_elements)} "
+                         f"joints (limits {MAX_LINKS}, {MAX_JOINTS})")
+    warnings: List[str] = []
+    links: Dict[str, Link] = {}
+    for element in link_elements:
+        link = _parse_link(element, warnings)
+        if link.name in links:
+            raise ModelError(f"duplicate link name '{link.name}'")
+        links[link.name] = link
+    joints: Dict[str, Joint] = {}
+    for element in joint_elements:
+        joint = _parse_joint(element)
+        if joint.name in joints:
+            raise ModelError(f"duplicate joint name '{joint.name}'")
+        joints[joint.name] = joint
+    model = RobotModel(name, links, joints, _find_root(links, joints), warnings=warnings)
+    for element in robot.findall("gazebo"):
+        _parse_gazebo(element, model)
+    return model

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Install every system package the workspace needs, derived from the packages' package.xml files.
+# Supported: Debian 12 (Debian's own ROS packages under /usr) and Ubuntu 20.04 with the ROS apt source
+# configured (ros-noetic-* under /opt/ros/noetic). Idempotent: apt runs only when something is missing.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+
+. /etc/os-release
+case "${ID}:${VERSION_ID:-}" in
+  debian:12) platform=debian ;;
+  ubuntu:20.04) platform=ubuntu ;;
+  *)
+    echo "install_deps: unsupported platform '${PRETTY_NAME:-$ID}'." >&2
+    echo "Supported: Debian 12 (bookworm), or Ubuntu 20.04 (focal) with the ROS Noetic apt source." >&2
+    exit 1 ;;
+esac
+
+apt_updated=0
+apt_install() {
+  if [ "$apt_updated" -eq 0 ]; then $SUDO apt-get update -q; apt_updated=1; fi
+  $SUDO apt-get install -y -q --no-install-recommends "$@"
+}
+
+# The resolver itself needs the system Python (a minimal image may not have it yet).
+if [ ! -x /usr/bin/python3 ]; then apt_install python3-minimal; fi
+
+mapfile -t wanted < <(/usr/bin/python3 scripts/lib/resolve_deps.py --platform "$platform")
+missing=()
+for package in "${wanted[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null || true)
+  [ "$status" = "installed" ] || missing+=("$package")
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install_deps: all ${#wanted[@]} packages present ($platform)."
+  exit 0
+fi
+echo "install_deps: installing ${#missing[@]} of ${#wanted[@]} packages ($platform): ${missing[*]}"
+if [ "$platform" = ubuntu ] && ! apt-cache policy ros-noetic-catkin | grep -q 'Candidate: [0-9]'; then
+  apt_install ca-certificates
+  if ! apt-cache policy ros-noetic-catkin | grep -q 'Candidate: [0-9]'; then
+    echo "install_deps: ros-noetic-* packages not found: configure the ROS Noetic apt source first" >&2
+    echo "(see http://wiki.ros.org/noetic/Installation/Ubuntu, steps 1.2-1.3)." >&2
+    exit 1
+  fi
+fi
+apt_install "${missing[@]}"
