@@ -7,6 +7,7 @@ Each entry of ~cases becomes one test:
   exit_code: the expected exit code (default 0), or "running": the command must still be running once every
              pattern has been seen; it is then stopped with SIGINT
   expect:    regular expressions that must all appear in stdout + stderr (multiline)
+  params:    {name: value} that must be on the parameter server once the patterns were seen ("running" only)
   reject:    regular expressions that must not appear
   timeout:   seconds (default 20)
 """
@@ -62,14 +63,18 @@ def stop(process: subprocess.Popen) -> None:
 def run_case(test: unittest.TestCase, case: dict) -> None:
     timeout = float(case.get("timeout", 20))
     expected_exit = case.get("exit_code", 0)
+    # Nodes write into a pipe here: make them flush each line, as they would on a terminal.
+    env = dict(os.environ, ROSCONSOLE_STDOUT_LINE_BUFFERED="1", PYTHONUNBUFFERED="1")
     process = subprocess.Popen(shlex.split(case["command"]), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                               universal_newlines=True, start_new_session=True)
+                               universal_newlines=True, start_new_session=True, env=env)
     output = CommandOutput(process)
     try:
         if expected_exit == "running":
             seen = output.wait_for(case.get("expect", []), timeout)
             test.assertIsNone(process.poll(), "command ended early (exit %s):\n%s" % (process.poll(), output.text))
             test.assertTrue(seen, "patterns %s not seen within %s s:\n%s" % (case.get("expect"), timeout, output.text))
+            for name, value in case.get("params", {}).items():
+                test.assertEqual(rospy.get_param(name, None), value, "parameter %s" % name)
         else:
             try:
                 exit_code = process.wait(timeout)

@@ -30,7 +30,8 @@ class BagRoundTrip(unittest.TestCase):
         self.assertTrue(wait_for_file(bag_path, 60.0), "record.launch wrote no %s" % bag_path)
         try:
             with rosbag.Bag(bag_path) as bag:
-                recorded = [msg.data for _, msg, _ in bag.read_messages(topics=["/chatter"])]
+                # The bag keeps the name as recorded: relative, so that it plays back into any namespace.
+                recorded = [msg.data for _, msg, _ in bag.read_messages(topics=["chatter"])]
             self.assertEqual(len(recorded), count)
             numbers = [int(text.rsplit(" ", 1)[1]) for text in recorded]
             self.assertEqual(numbers, list(range(numbers[0], numbers[0] + count)), "messages lost or reordered")

@@ -3,11 +3,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Mapping, Tuple
-
-import ode
+from typing import TYPE_CHECKING, Dict, Mapping, Tuple
 
 from . import ode_constants as oc
+
+if TYPE_CHECKING:  # only for annotations: odometry needs no ODE
+    import ode
 
 INTEGRATIONS = ("midpoint", "exact")
 
@@ -41,20 +42,24 @@ class DiffDriveParams:
                              f"got {self.odometry_integration!r}")
 
     @classmethod
-    def from_kobuki_plugin(cls, params: Mapping[str, str], **overrides: object) -> "DiffDriveParams":
-        """Read libgazebo_ros_kobuki.so's <plugin> parameters (wheel_diameter, torque, ...)."""
-        result = cls(**overrides)  # type: ignore[arg-type]
+    def from_kobuki_plugin(cls, params: Mapping[str, str],
+                           **overrides: object) -> "DiffDriveParams":
+        """Read libgazebo_ros_kobuki.so's <plugin> parameters (wheel_diameter, torque, ...);
+        keyword ``overrides`` win over them."""
+        fields: Dict[str, object] = {}
         try:
             if "wheel_separation" in params:
-                result.wheel_separation = float(params["wheel_separation"])
+                fields["wheel_separation"] = float(params["wheel_separation"])
             if "wheel_diameter" in params:
-                result.wheel_radius = float(params["wheel_diameter"]) / 2
+                fields["wheel_radius"] = float(params["wheel_diameter"]) / 2
             if "torque" in params:
-                result.max_wheel_torque = float(params["torque"])
+                fields["max_wheel_torque"] = float(params["torque"])
             if "velocity_command_timeout" in params:
-                result.cmd_timeout = float(params["velocity_command_timeout"])
+                fields["cmd_timeout"] = float(params["velocity_command_timeout"])
         except ValueError as error:
             raise ValueError(f"kobuki plugin parameter is not a number: {error}") from None
+        fields.update(overrides)
+        result = cls(**fields)  # type: ignore[arg-type]
         result.validate()
         return result
 
@@ -66,7 +71,8 @@ class DiffDriveController:
     URDFs where left and right wheels share ``<axis xyz="0 1 0"/>``.
     """
 
-    def __init__(self, left: ode.HingeJoint, right: ode.HingeJoint, params: DiffDriveParams) -> None:
+    def __init__(self, left: ode.HingeJoint, right: ode.HingeJoint,
+                 params: DiffDriveParams) -> None:
         params.validate()
         self.params = params
         self._left = left
@@ -165,14 +171,14 @@ class WheelOdometry:
         self._last = (math.nan, math.nan, math.nan)
 
     def update(self, left_angle: float, right_angle: float, now: float) -> None:
-        """Integrate the wheel angle increments since the previous call at sim time ``now``."""
+        """Integrate the increments of multi-turn wheel angles (``JointHandle.angle()``)
+        since the previous call, made at sim time ``now``."""
         last_left, last_right, last_time = self._last
         self._last = (left_angle, right_angle, now)
         if math.isnan(last_time):
             return
-        # Wrapping the increment accepts both multi-turn and [-pi, pi] encoder readings.
-        left = _wrap(left_angle - last_left) * self.wheel_radius
-        right = _wrap(right_angle - last_right) * self.wheel_radius
+        left = (left_angle - last_left) * self.wheel_radius
+        right = (right_angle - last_right) * self.wheel_radius
         distance = (left + right) / 2
         turn = (right - left) / self.wheel_separation
         if self.exact and abs(turn) > 1e-9:

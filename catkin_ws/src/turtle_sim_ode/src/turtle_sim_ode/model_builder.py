@@ -12,11 +12,11 @@ from .physics import PhysicsWorld, SurfaceParams
 from .urdf_model import Box, Cylinder, Geometry, Joint, ModelError, Pose, RobotModel, Sphere
 
 Vec3 = Tuple[float, float, float]
-Quat = Tuple[float, float, float, float]  # (w, x, y, z), ODE's order, unless named _xyzw
+Quat = Tuple[float, float, float, float]  # (w, x, y, z) as ODE; only link_pose gives ROS's xyzw
 Transform = Tuple[Vec3, Quat]
 Matrix3 = Tuple[Vec3, Vec3, Vec3]
 
-IDENTITY: Transform = ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
+_TWO_PI = 2 * math.pi
 
 
 # --- rigid transforms (plain floats: cheaper than numpy for 3-vectors) ----------------
@@ -46,7 +46,8 @@ def quat_rotate(q: Quat, v: Vec3) -> Vec3:
 
 def quat_matrix(q: Quat) -> Matrix3:
     columns = [quat_rotate(q, axis) for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
-    return tuple(tuple(columns[c][r] for c in range(3)) for r in range(3))  # type: ignore[return-value]
+    return tuple(  # type: ignore[return-value]
+        tuple(columns[c][r] for c in range(3)) for r in range(3))
 
 
 def compose(a: Transform, b: Transform) -> Transform:
@@ -77,12 +78,15 @@ class LinkFrame:
 class JointHandle:
     """A non-fixed URDF joint: position and velocity with URDF sign conventions."""
 
+    __slots__ = ("name", "type", "joint", "_read_wrapped", "_last_wrapped", "_unwrapped")
+
     def __init__(self, name: str, joint_type: str, joint: ode.Joint) -> None:
         self.name = name
         self.type = joint_type
         self.joint = joint
-        self._unwrapped = 0.0
+        self._read_wrapped = joint.getAngle if joint_type == "continuous" else None
         self._last_wrapped = 0.0
+        self._unwrapped = 0.0
 
     def angle(self) -> float:
         """Joint position (rad or m); continuous joints are unwrapped (multi-turn)."""
@@ -100,12 +104,12 @@ class JointHandle:
 
     def track_turns(self) -> None:
         """Accumulate ODE's [-pi, pi] hinge angle; called after every step."""
-        wrapped = self.joint.getAngle()
+        wrapped = self._read_wrapped()
         delta = wrapped - self._last_wrapped
         if delta > math.pi:
-            delta -= 2 * math.pi
+            delta -= _TWO_PI
         elif delta < -math.pi:
-            delta += 2 * math.pi
+            delta += _TWO_PI
         self._unwrapped += delta
         self._last_wrapped = wrapped
 
@@ -130,11 +134,13 @@ class BuiltModel:
 
     def __init__(self, physics: PhysicsWorld, robot: RobotModel, space: ode.SpaceBase,
                  bodies: List[ode.Body], links: Dict[str, LinkFrame],
-                 joints: Dict[str, JointHandle], damping: List[Tuple[JointHandle, float]]) -> None:
+                 geoms: Dict[str, List[ode.GeomObject]], joints: Dict[str, JointHandle],
+                 damping: List[Tuple[JointHandle, float]]) -> None:
         self.name = robot.name
         self.robot = robot
         self.root_link = robot.root
         self.links = links
+        self.geoms = geoms  # link name -> its collision geoms, in URDF order
         self.joints = joints
         self.bodies = bodies
         self._physics = physics
@@ -207,6 +213,7 @@ class BuiltModel:
         self._space = None
         self.joints = {}
         self.links = {}
+        self.geoms = {}
         self.bodies = []
         self._hook = None
 
@@ -228,9 +235,11 @@ def _inertia_about_com(parts: Sequence[Tuple[float, Vec3, Matrix3]]) -> Tuple[fl
 
 
 def _rotated_inertia(q: Quat, inertia: Matrix3) -> Matrix3:
+    """R I R^T."""
     rot = quat_matrix(q)
-    return tuple(tuple(sum(rot[r][a] * inertia[a][b] * rot[k][b] for a in range(3) for b in range(3))
-                       for k in range(3)) for r in range(3))  # type: ignore[return-value]
+    return tuple(  # type: ignore[return-value]
+        tuple(sum(rot[r][a] * inertia[a][b] * rot[k][b] for a in range(3) for b in range(3))
+              for k in range(3)) for r in range(3))
 
 
 def _create_geom(space: ode.SpaceBase, geometry: Geometry) -> ode.GeomObject:
@@ -265,8 +274,10 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
     """
     if len(pose) != 6 or not all(math.isfinite(v) for v in pose):
         raise ValueError(f"pose must be 6 finite numbers (x, y, z, roll, pitch, yaw), got {pose!r}")
-    world_of: Dict[str, Transform] = {robot.root: ((pose[0], pose[1], pose[2]), quat_from_rpy(*pose[3:]))}
+    world_of: Dict[str, Transform] = {
+        robot.root: ((pose[0], pose[1], pose[2]), quat_from_rpy(*pose[3:]))}
     owner: Dict[str, str] = {robot.root: robot.root}  # link -> link whose body carries it
+    members_of: Dict[str, List[str]] = {robot.root: [robot.root]}  # the reverse, in BFS order
     child_joints: Dict[str, List[Joint]] = {}
     for joint in robot.joints.values():
         child_joints.setdefault(joint.parent, []).append(joint)
@@ -275,14 +286,15 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
         for joint in child_joints.get(link, []):
             world_of[joint.child] = compose(world_of[link], pose_transform(joint.origin))
             owner[joint.child] = owner[link] if joint.type == "fixed" else joint.child
+            members_of.setdefault(owner[joint.child], []).append(joint.child)
             order.append(joint.child)
 
     space = physics.create_model_space(self_collide)
     bodies: Dict[str, ode.Body] = {}
     links: Dict[str, LinkFrame] = {}
+    geoms: Dict[str, List[ode.GeomObject]] = {}
     try:
-        for body_link in [link for link in order if owner[link] == link]:
-            members = [link for link in order if owner[link] == body_link]
+        for body_link, members in members_of.items():
             to_body_link = inverse(world_of[body_link])
             relative = {m: compose(to_body_link, world_of[m]) for m in members}
             parts = []
@@ -291,7 +303,8 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
                 if inertial is None:
                     continue
                 position, rotation = compose(relative[member], pose_transform(inertial.origin))
-                parts.append((inertial.mass, position, _rotated_inertia(rotation, inertial.matrix())))
+                parts.append(
+                    (inertial.mass, position, _rotated_inertia(rotation, inertial.matrix())))
             if not parts:
                 raise ModelError(f"link '{body_link}' and the links fixed to it have no "
                                  f"<inertial>; a moving body needs mass")
@@ -306,8 +319,10 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
             body.setQuaternion(body_pose[1])
             bodies[body_link] = body
             for member in members:
-                offset = compose(((-com[0], -com[1], -com[2]), (1.0, 0.0, 0.0, 0.0)), relative[member])
+                offset = compose(((-com[0], -com[1], -com[2]), (1.0, 0.0, 0.0, 0.0)),
+                                 relative[member])
                 links[member] = LinkFrame(body, offset)
+                geoms[member] = []
                 surface = _surface_for(robot, member, physics.params.default_surface)
                 for collision in robot.links[member].collisions:
                     geom = _create_geom(space, collision.geometry)
@@ -316,6 +331,7 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
                     geom.setOffsetPosition(geom_offset[0])
                     geom.setOffsetQuaternion(geom_offset[1])
                     physics.register_geom(geom, surface)
+                    geoms[member].append(geom)
 
         joints: Dict[str, JointHandle] = {}
         damping: List[Tuple[JointHandle, float]] = []
@@ -352,4 +368,4 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
             physics.forget_body(body)
             body.disable()
         raise
-    return BuiltModel(physics, robot, space, list(bodies.values()), links, joints, damping)
+    return BuiltModel(physics, robot, space, list(bodies.values()), links, geoms, joints, damping)

@@ -72,7 +72,9 @@ class PhysicsParams:
     erp: float = 0.2
     cfm: float = 1e-5
     max_contacts: int = 4
-    contact_max_correcting_vel: float = 100.0
+    # Caps how fast penetration is pushed out: higher bounces (a 2 m/s impact rebounds
+    # at up to this speed), lower lets soft contacts sink under load (force <= cap / cfm).
+    contact_max_correcting_vel: float = 0.1
     contact_surface_layer: float = 0.0001
     default_surface: SurfaceParams = field(default_factory=SurfaceParams)
     # Gazebo's ground_plane model surface.
@@ -111,7 +113,7 @@ def _merge_line_contact(contacts: Sequence[ode.Contact]) -> Sequence[ode.Contact
 
     A cylinder lying on a surface touches it along a line, but ODE reports only the
     line's two ends. Their friction scrubs against each other when the cylinder pivots:
-    a wheel pair turning in place then turns ~8 % slower than commanded, because the
+    a wheel pair turning in place then turns 6.5 % slower than commanded, because the
     robot settles where one end point sticks. One contact at the centre of pressure of
     the (linear, as for a spring foundation) pressure profile pivots freely.
     """
@@ -153,10 +155,11 @@ class PhysicsWorld:
         self.world.setContactSurfaceLayer(p.contact_surface_layer)
         self.space = ode.HashSpace()
         self.ground = ode.GeomPlane(None, (0.0, 0.0, 1.0), 0.0)
-        self._contact_group = ode.JointGroup()
+        # Contact joints live until the next step; dropping a wrapper destroys its joint.
+        # (No ode.JointGroup: its destructor double-frees joints that still have wrappers.)
+        self._contact_joints: List[ode.ContactJoint] = []
         self._stepper = self.world.quickStep if p.solver == "quick" else self.world.step
         self._steps = 0
-        self._contact_count = 0
         self._static_space: Optional[ode.SpaceBase] = None
         self._self_colliding: List[ode.SpaceBase] = []
         self._surfaces: Dict[ode.GeomObject, SurfaceParams] = {self.ground: p.ground_surface}
@@ -165,13 +168,6 @@ class PhysicsWorld:
         self._pair_cache: Dict[Tuple[ode.GeomObject, ode.GeomObject], PairContact] = {}
         self._jointed: Set[Tuple[ode.Body, ode.Body]] = set()
         self._post_step_hooks: List[Callable[[], None]] = []
-
-    def __del__(self) -> None:
-        # PyODE's JointGroup destructor frees its ODE joints without telling their
-        # Python wrappers, which then free them again: empty the group first.
-        group = getattr(self, "_contact_group", None)
-        if group is not None:
-            group.empty()
 
     # --- clock -----------------------------------------------------------------
     @property
@@ -186,7 +182,7 @@ class PhysicsWorld:
     @property
     def contact_count(self) -> int:
         """Contact joints created in the last step."""
-        return self._contact_count
+        return len(self._contact_joints)
 
     def reset_time(self) -> None:
         self._steps = 0
@@ -225,6 +221,10 @@ class PhysicsWorld:
         if body is not None:
             self._ground_tests.append((geom, body, self._pair_contact(self.ground, geom)))
 
+    def surface(self, geom: ode.GeomObject) -> SurfaceParams:
+        """The surface registered for ``geom`` (the default one if none was)."""
+        return self._surfaces.get(geom, self.params.default_surface)
+
     def unregister_geom(self, geom: ode.GeomObject) -> None:
         if self._surfaces.pop(geom, None) is None:
             return
@@ -251,8 +251,7 @@ class PhysicsWorld:
     # --- stepping ----------------------------------------------------------------
     def step(self) -> None:
         """Collide, then advance exactly one fixed time step."""
-        self._contact_group.empty()
-        self._contact_count = 0
+        self._contact_joints.clear()
         ground = self.ground
         collide = ode.collide
         for geom, body, pair in self._ground_tests:
@@ -298,12 +297,13 @@ class PhysicsWorld:
             contacts = _merge_line_contact(contacts)
         elif len(contacts) > self.params.max_contacts:
             contacts = contacts[:self.params.max_contacts]
-        world, group = self.world, self._contact_group
+        world, keep = self.world, self._contact_joints.append
         for contact in contacts:
             contact.setMode(mode)
             contact.setMu(mu)
             contact.setMu2(mu2)
             contact.setSoftERP(erp)
             contact.setSoftCFM(cfm)
-            ode.ContactJoint(world, group, contact).attach(body1, body2)
-        self._contact_count += len(contacts)
+            joint = ode.ContactJoint(world, None, contact)
+            joint.attach(body1, body2)
+            keep(joint)

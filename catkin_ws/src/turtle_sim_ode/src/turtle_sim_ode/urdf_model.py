@@ -365,8 +365,9 @@ def parse_urdf(text: str) -> RobotModel:
         robot = SafeET.fromstring(text)
     except ParseError as error:
         line, column = error.position
+        reason = str(error).split(":")[0]  # expat appends the position we report ourselves
         raise ModelError(f"URDF is not well-formed XML at line {line}, column {column}: "
-                         f"{error}") from None
+                         f"{reason}") from None
     except defusedxml.DefusedXmlException as error:
         raise ModelError(f"URDF rejected by the XML guard: {error}") from None
     if robot.tag != "robot":
