@@ -1,0 +1,120 @@
+"""The simulator node's private parameters, checked without ROS: a bad value raises SettingsError naming it."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Dict, Mapping, Tuple
+
+from .physics import PhysicsParams
+
+# Parameters of physics.yaml, read into PhysicsParams (checked again by PhysicsParams.validate()).
+PHYSICS_PARAMS = ("time_step", "solver", "solver_iterations", "gravity", "erp", "cfm", "max_contacts",
+                  "contact_max_correcting_vel", "contact_surface_layer")
+# Overrides of the drive plugin's values, under ~diff_drive/ (names of DiffDriveParams).
+DRIVE_OVERRIDES = ("max_wheel_torque", "max_wheel_acceleration", "max_linear", "max_angular", "cmd_timeout",
+                   "odometry_integration")
+
+
+class SettingsError(ValueError):
+    """A parameter is of the wrong type or out of range."""
+
+
+@dataclass
+class SimulatorSettings:
+    real_time_factor: float = 1.0  # 0 = as fast as possible
+    paused: bool = False
+    pub_clock_frequency: float = 100.0  # Hz of sim time
+    publish_rate: float = 50.0  # odom, tf, joint_states, ground truth: Hz of sim time
+    odom_frame: str = "odom"
+    base_frame: str = "base_footprint"
+    publish_tf: bool = True
+    ground_truth_topic: str = "ground_truth/odom"
+    ground_truth_frame: str = "world"
+    # A model spawned at start-up from a URDF parameter (none when spawn_model_name is empty).
+    spawn_model_name: str = ""
+    spawn_robot_description: str = "robot_description"
+    spawn_pose: Tuple[float, float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    physics: PhysicsParams = field(default_factory=PhysicsParams)
+    drive_overrides: Dict[str, Any] = field(default_factory=dict)
+
+
+def _number(params: Mapping[str, Any], name: str, default: float, minimum: float = -math.inf,
+            exclusive: bool = False) -> float:
+    value = params.get(name, default)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise SettingsError(f"parameter ~{name} must be a finite number, got [{value!r}]")
+    if value < minimum or (exclusive and value == minimum):
+        raise SettingsError(f"parameter ~{name} must be {'>' if exclusive else '>='} {minimum}, got [{value!r}]")
+    return float(value)
+
+
+def _typed(params: Mapping[str, Any], name: str, default: Any, kind: type) -> Any:
+    value = params.get(name, default)
+    if not isinstance(value, kind) or (kind is int and isinstance(value, bool)):
+        raise SettingsError(f"parameter ~{name} must be of type {kind.__name__}, got [{value!r}]")
+    return value
+
+
+def _physics(params: Mapping[str, Any]) -> PhysicsParams:
+    defaults = PhysicsParams()
+    values: Dict[str, Any] = {}
+    for name in PHYSICS_PARAMS:
+        if name not in params:
+            continue
+        default = getattr(defaults, name)
+        if name == "gravity":
+            gravity = params[name]
+            if not isinstance(gravity, (list, tuple)) or len(gravity) != 3:
+                raise SettingsError(f"parameter ~gravity must be a list of 3 numbers, got [{gravity!r}]")
+            values[name] = tuple(_number({"gravity": g}, "gravity", 0.0) for g in gravity)
+        elif name == "solver":
+            values[name] = _typed(params, name, default, str)
+        elif isinstance(default, int):
+            values[name] = _typed(params, name, default, int)
+        else:
+            values[name] = _number(params, name, default)
+    physics = PhysicsParams(**values)
+    try:
+        physics.validate()
+    except ValueError as error:
+        raise SettingsError(f"parameter ~{error}") from None
+    return physics
+
+
+def _drive_overrides(params: Mapping[str, Any]) -> Dict[str, Any]:
+    overrides = params.get("diff_drive", {})
+    if not isinstance(overrides, dict):
+        raise SettingsError(f"parameter ~diff_drive must be a dictionary, got [{overrides!r}]")
+    unknown = sorted(set(overrides) - set(DRIVE_OVERRIDES))
+    if unknown:
+        raise SettingsError(f"parameter ~diff_drive has unknown keys {unknown}; known: {list(DRIVE_OVERRIDES)}")
+    checked: Dict[str, Any] = {}
+    for name, value in overrides.items():
+        if name == "odometry_integration":
+            checked[name] = _typed(overrides, name, "midpoint", str)
+        else:
+            checked[name] = _number(overrides, name, 0.0, minimum=0.0)
+    return checked
+
+
+def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
+    """Build settings from the node's private parameter dictionary (rospy.get_param("~"))."""
+    defaults = SimulatorSettings()
+    settings = SimulatorSettings(
+        real_time_factor=_number(params, "real_time_factor", defaults.real_time_factor, minimum=0.0),
+        paused=_typed(params, "paused", defaults.paused, bool),
+        pub_clock_frequency=_number(params, "pub_clock_frequency", defaults.pub_clock_frequency, 0.0, True),
+        publish_rate=_number(params, "publish_rate", defaults.publish_rate, 0.0, True),
+        publish_tf=_typed(params, "publish_tf", defaults.publish_tf, bool),
+        spawn_pose=tuple(_number(params, "spawn_" + axis, 0.0) for axis in ("x", "y", "z", "roll", "pitch", "yaw")),
+        physics=_physics(params),
+        drive_overrides=_drive_overrides(params),
+    )
+    for name in ("odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame", "spawn_model_name",
+                 "spawn_robot_description"):
+        setattr(settings, name, _typed(params, name, getattr(defaults, name), str))
+    for name in ("odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame"):
+        if not getattr(settings, name):
+            raise SettingsError(f"parameter ~{name} must not be empty")
+    return settings
+
