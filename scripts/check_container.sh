@@ -71,11 +71,15 @@ work_dir=""
 container=""
 results=""
 
+unmount_below() {  # debootstrap may leave /proc or /sys mounted in its target: unmount them before removing it
+  local mount
+  for mount in $(findmnt -rn -o TARGET | grep "^$1/" | sort -r); do umount -l "$mount" || true; done
+}
+
 cleanup() {
   if [ -n "$container" ]; then buildah rm "$container" > /dev/null 2>&1 || true; fi
   if [ -n "$work_dir" ] && [ -d "$work_dir" ]; then
-    # debootstrap may leave /proc or /sys mounted in the target: unmount before removing, never cross into them.
-    findmnt -rn -o TARGET | grep "^$work_dir/" | sort -r | while read -r mount; do umount -l "$mount" || true; done
+    unmount_below "$work_dir"
     rm -rf --one-file-system "$work_dir"
   fi
   if [ -n "$results" ]; then rm -rf "$results" 2> /dev/null || true; fi
@@ -124,7 +128,7 @@ make_rootfs_tarball() {
     if [ -n "$security" ]; then echo "deb $security bookworm-security main"; fi
   } > "$work_dir/rootfs/etc/apt/sources.list"
   rm -rf "$work_dir"/rootfs/var/cache/apt/archives/*.deb "$work_dir"/rootfs/var/lib/apt/lists/*
-  findmnt -rn -o TARGET | grep "^$work_dir/" | sort -r | while read -r mount; do umount -l "$mount"; done
+  unmount_below "$work_dir"
   tar --numeric-owner -C "$work_dir/rootfs" -cf "$rootfs_tarball.tmp" .
   mv "$rootfs_tarball.tmp" "$rootfs_tarball"
   rm -rf --one-file-system "$work_dir"

@@ -24,6 +24,12 @@ done
 
 echo "== gtest and rostest (catkin_make run_tests)"
 (cd catkin_ws && catkin_make run_tests -j1 > "$repo/run_tests.log" 2>&1)
+run_tests_status=$?
+if [ "$run_tests_status" -ne 0 ]; then
+  # A test target that does not build leaves no result file of its own: record the failure.
+  printf '<testsuite name="run_tests"><testcase classname="catkin_make" name="run_tests"><failure message="exit %s, see run_tests.log"/></testcase></testsuite>\n' \
+    "$run_tests_status" > "$results/run_tests_exit.xml"
+fi
 grep -E "^\[ *(OK|FAILED|PASSED) *\]|^\[ROSTEST\]|^ *\* (SUMMARY|RESULT)|^ *\* FAILURES|^ *\* ERRORS" run_tests.log || true
 
 echo "== summary"

@@ -1,6 +1,6 @@
 # Sourced by the scripts: the ROS environment with the system Python, whatever python3 is first on PATH.
 export PATH="/usr/bin:/bin:$PATH"
-# Scripts, launch files and the container keep ROS on loopback unless the user chose otherwise (ROS 1 has no
+# The scripts keep ROS on loopback unless the user chose otherwise (ROS 1 has no
 # authentication: whoever reaches the master commands the robot).
 export ROS_IP="${ROS_IP:-127.0.0.1}"
 export ROS_HOSTNAME="${ROS_HOSTNAME:-$ROS_IP}"

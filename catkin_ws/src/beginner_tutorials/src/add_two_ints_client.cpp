@@ -32,8 +32,12 @@ int main(int argc, char** argv)
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
-    if (arg == "--timeout" && i + 1 < argc)
+    if (arg == "--timeout")
+    {
+      if (i + 1 == argc)
+        return usageError("--timeout needs a number of seconds");
       timeout_text = argv[++i];
+    }
     else if (arg.compare(0, 10, "--timeout=") == 0)
       timeout_text = arg.substr(10);
     else if (arg == "-h" || arg == "--help")
@@ -67,8 +71,11 @@ int main(int argc, char** argv)
     if (end == timeout_text.c_str() || *end != '\0')
       return usageError("--timeout takes seconds, got '" + timeout_text + "'");
   }
-  if (!(timeout_s > 0.0))
-    return usageError("timeout must be > 0 s, got " + std::to_string(timeout_s));
+  if (!(timeout_s > 0.0 && timeout_s <= beginner_tutorials::kMaxTimeout))
+  {
+    ROS_FATAL("timeout must be in (0, %g] s, got [%g]", beginner_tutorials::kMaxTimeout, timeout_s);
+    return 1;
+  }
 
   const std::string service_name = nh.resolveName("add_two_ints");
   if (!ros::service::waitForService(service_name, ros::Duration(timeout_s)))
@@ -82,8 +89,8 @@ int main(int argc, char** argv)
   srv.request.b = b;
   if (!client.call(srv))
   {
-    ROS_ERROR("Failed to call service %s (the server refused %lld + %lld)", service_name.c_str(),
-              static_cast<long long>(a), static_cast<long long>(b));
+    ROS_ERROR("Failed to call service %s for %lld + %lld", service_name.c_str(), static_cast<long long>(a),
+              static_cast<long long>(b));
     return 1;
   }
   ROS_INFO("Sum: %lld", static_cast<long long>(srv.response.sum));

@@ -6,6 +6,9 @@
 
 namespace beginner_tutorials
 {
+/// The longest wait for a service that the clients accept, in seconds (one day).
+constexpr double kMaxTimeout = 86400.0;
+
 /// Parses a whole decimal integer ("42", "-7", "+3"). False for anything else: empty text, spaces,
 /// other characters, or a value outside int64.
 bool parseInt64(const std::string& text, int64_t* value);

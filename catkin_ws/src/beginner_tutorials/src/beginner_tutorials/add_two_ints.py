@@ -5,7 +5,7 @@ from typing import List
 import rosgraph
 import rospy
 
-from beginner_tutorials.checked_int import checked_add, parse_int64
+from beginner_tutorials.checked_int import MAX_TIMEOUT, checked_add, parse_int64
 from beginner_tutorials.params import ParamError, read_param
 from beginner_tutorials.srv import AddTwoInts, AddTwoIntsResponse
 
@@ -40,7 +40,9 @@ def add_two_ints_client(argv: List[str]) -> int:
     args = iter(argv)
     for arg in args:
         if arg == "--timeout":
-            timeout_text = next(args, "")
+            timeout_text = next(args, None)
+            if timeout_text is None:
+                return _usage_error("--timeout needs a number of seconds")
         elif arg.startswith("--timeout="):
             timeout_text = arg[len("--timeout="):]
         elif arg in ("-h", "--help"):
@@ -67,8 +69,9 @@ def add_two_ints_client(argv: List[str]) -> int:
         return 1
     except ValueError:
         return _usage_error("--timeout takes seconds, got '%s'" % timeout_text)
-    if not timeout_s > 0:
-        return _usage_error("timeout must be > 0 s, got %s" % timeout_s)
+    if not 0 < timeout_s <= MAX_TIMEOUT:
+        rospy.logfatal("timeout must be in (0, %g] s, got [%g]", MAX_TIMEOUT, timeout_s)
+        return 1
 
     service_name = rospy.resolve_name("add_two_ints")
     try:
@@ -79,7 +82,7 @@ def add_two_ints_client(argv: List[str]) -> int:
     try:
         response = rospy.ServiceProxy(service_name, AddTwoInts)(*numbers)
     except rospy.ServiceException as error:
-        rospy.logerr("Failed to call service %s (the server refused %d + %d): %s", service_name, *numbers, error)
+        rospy.logerr("Failed to call service %s for %d + %d: %s", service_name, numbers[0], numbers[1], error)
         return 1
     rospy.loginfo("Sum: %d", response.sum)
     return 0

@@ -4,6 +4,7 @@ from typing import Optional
 
 INT64_MIN = -(2**63)
 INT64_MAX = 2**63 - 1
+MAX_TIMEOUT = 86400.0  # the longest wait for a service that the clients accept, in seconds (one day)
 _INTEGER = re.compile(r"[+-]?[0-9]+\Z")
 
 
