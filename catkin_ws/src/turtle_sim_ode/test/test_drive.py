@@ -59,15 +59,18 @@ class DriveThroughRos(unittest.TestCase):
         cls.truth.wait_newer()
 
     def drive(self, linear, angular, seconds):
-        """Send a command at 10 Hz of sim time for `seconds` of sim time, then a stop, as a well-behaved node does."""
+        """Send a command at 10 Hz of sim time for `seconds` of sim time, then a stop, as a well-behaved node does.
+        Returns the last ground truth received while the command was still being sent."""
         twist = Twist()
         twist.linear.x, twist.angular.z = linear, angular
         end = rospy.Time.now() + rospy.Duration(seconds)
         rate = rospy.Rate(10)
         while rospy.Time.now() < end:
             self.cmd.publish(twist)
+            truth_while_driving = self.truth.msg
             rate.sleep()
         self.cmd.publish(Twist())
+        return truth_while_driving
 
     def rest(self, seconds=1.0):
         rospy.sleep(seconds)
@@ -104,8 +107,7 @@ class DriveThroughRos(unittest.TestCase):
         self.drive(float("nan"), 0.0, 1.0)
         pose = planar(self.truth.wait_newer(rospy.Time.now()))
         self.assertTrue(all(math.isfinite(v) for v in pose))
-        self.drive(50.0, 0.0, 3.0)
-        speed = self.truth.wait_newer(rospy.Time.now()).twist.twist.linear.x
+        speed = self.drive(50.0, 0.0, 3.0).twist.twist.linear.x
         self.assertAlmostEqual(speed, rospy.get_param("~max_linear"), delta=0.03)
         self.rest()
 

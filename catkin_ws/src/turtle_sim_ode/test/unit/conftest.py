@@ -9,11 +9,8 @@ from typing import List, Optional, Tuple
 PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(PACKAGE_ROOT / "src"))
 
-from turtle_sim_ode.diff_drive import (  # noqa: E402
-    DiffDriveController, DiffDriveParams, WheelOdometry)
-from turtle_sim_ode.model_builder import build_model  # noqa: E402
-from turtle_sim_ode.physics import PhysicsParams, PhysicsWorld  # noqa: E402
-from turtle_sim_ode.urdf_model import parse_urdf  # noqa: E402
+from turtle_sim_ode.physics import PhysicsParams  # noqa: E402
+from turtle_sim_ode.simulation import Simulation  # noqa: E402
 
 TURTLEBOT_URDF = (PACKAGE_ROOT / "urdf" / "turtlebot.urdf").read_text()
 COMMAND_PERIOD = 0.1  # cmd_vel arrives at 10 Hz
@@ -26,19 +23,18 @@ def yaw_of(quaternion_xyzw: Tuple[float, float, float, float]) -> float:
 
 
 class TurtleSim:
-    """TurtleBot URDF + Kobuki diff drive + wheel odometry on a fixed-step world."""
+    """TurtleBot URDF + Kobuki diff drive + wheel odometry on a fixed-step world, through Simulation."""
 
     def __init__(self, solver: str = "quick", z: float = 0.0, **drive_overrides: float) -> None:
-        self.physics = PhysicsWorld(PhysicsParams(solver=solver))
-        self.robot = parse_urdf(TURTLEBOT_URDF)
-        self.model = build_model(self.physics, self.robot, (0.0, 0.0, z, 0.0, 0.0, 0.0))
-        plugin = self.robot.plugin("libgazebo_ros_kobuki.so")
-        assert plugin is not None
-        self.params = DiffDriveParams.from_kobuki_plugin(plugin.params, **drive_overrides)
-        self.left = self.model.joint(plugin.params["left_wheel_joint_name"])
-        self.right = self.model.joint(plugin.params["right_wheel_joint_name"])
-        self.drive = DiffDriveController(self.left.joint, self.right.joint, self.params)
-        self.odometry = WheelOdometry.from_params(self.params)
+        self.sim = Simulation(PhysicsParams(solver=solver), drive_overrides)
+        self.sim.spawn_urdf("mobile_base", TURTLEBOT_URDF, (0.0, 0.0, z, 0.0, 0.0, 0.0))
+        robot = self.sim.robots["mobile_base"]
+        self.physics = self.sim.physics
+        self.model = robot.model
+        self.params = robot.params
+        self.left, self.right = robot.left, robot.right
+        self.drive = robot.drive
+        self.odometry = robot.odometry
         self._steps_per_command = round(COMMAND_PERIOD / self.physics.time_step)
         self._steps_per_odometry = round(ODOMETRY_PERIOD / self.physics.time_step)
 
@@ -57,8 +53,7 @@ class TurtleSim:
             now = self.physics.sim_time
             if command is not None and step % self._steps_per_command == 0:
                 self.drive.set_command(command[0], command[1], now)
-            self.drive.update(now, dt)
-            self.physics.step()
+            self.sim.step()
             if step % self._steps_per_odometry == 0:
                 self.odometry.update(self.left.angle(), self.right.angle(), self.physics.sim_time)
             if sample_steps and step % sample_steps == 0:

@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""rostest node: start Xvfb and rviz on the shipped config, take screenshots until the robot's blue shell shows
+in the middle of the 3D view (or time runs out), and keep the last screenshot as a PNG for people to look at."""
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import matplotlib
+import numpy as np
+import rospy
+import rostest
+
+from turtle_sim_ode.xwd_image import read_xwd
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+RVIZ_BACKGROUND = (48, 48, 48)
+
+
+def start_xvfb():
+    """Xvfb on a display number it picks itself (-displayfd), so parallel tests never collide."""
+    read_end, write_end = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1024x768x24", "-nolisten", "tcp"],
+                              pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                              start_new_session=True)
+    os.close(write_end)
+    with os.fdopen(read_end) as display_number:
+        return server, ":" + display_number.readline().strip()
+
+
+def stop(process):
+    try:
+        os.killpg(process.pid, signal.SIGTERM)
+        process.wait(10)
+    except ProcessLookupError:
+        pass
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)
+
+
+def robot_pixels(image):
+    """Blue-shell pixels inside the central half of the 3D view (the region of rviz's background colour)."""
+    view = np.all(np.abs(image.astype(int) - RVIZ_BACKGROUND) <= 2, axis=2)
+    ys, xs = np.nonzero(view)
+    if len(xs) == 0:
+        return 0
+    x0, x1, y0, y1 = xs.min(), xs.max(), ys.min(), ys.max()
+    cx0, cx1 = x0 + (x1 - x0) // 4, x1 - (x1 - x0) // 4
+    cy0, cy1 = y0 + (y1 - y0) // 4, y1 - (y1 - y0) // 4
+    r, g, b = [image[cy0:cy1, cx0:cx1, i].astype(int) for i in range(3)]
+    return int(np.count_nonzero((b > r + 60) & (b > g + 20)))
+
+
+class RvizShowsRobot(unittest.TestCase):
+    def test_robot_visible(self):
+        xvfb, display = start_xvfb()
+        env = dict(os.environ, DISPLAY=display)
+        rviz = subprocess.Popen(["rviz", "-d", rospy.get_param("~rviz_config")], env=env, stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL, start_new_session=True)
+        shot_path = os.path.join(tempfile.gettempdir(), "turtle_sim_ode_rviz.png")
+        try:
+            deadline = time.monotonic() + rospy.get_param("~timeout")
+            pixels, image = 0, None
+            while time.monotonic() < deadline and pixels < rospy.get_param("~min_robot_pixels"):
+                self.assertIsNone(rviz.poll(), "rviz exited with %s" % rviz.poll())
+                dump = subprocess.run(["xwd", "-root", "-silent", "-display", display], stdout=subprocess.PIPE,
+                                      check=True).stdout
+                image = read_xwd(dump)
+                pixels = robot_pixels(image)
+                time.sleep(1.0)  # rviz draws in its own time: nothing to wait on but the picture
+            if image is not None:
+                plt.imsave(shot_path, image)
+            self.assertGreaterEqual(pixels, rospy.get_param("~min_robot_pixels"),
+                                    "the robot did not show in rviz; last screenshot: %s" % shot_path)
+        finally:
+            stop(rviz)
+            stop(xvfb)
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_rviz_render")
+    rostest.rosrun("turtle_sim_ode", "rviz_shows_robot", RvizShowsRobot, sys.argv)

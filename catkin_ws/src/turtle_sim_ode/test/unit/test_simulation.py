@@ -1,0 +1,60 @@
+"""Models by name in one world: spawning, refusing bad names and models, deleting, and driving."""
+import math
+
+import pytest
+
+from turtle_sim_ode.simulation import Simulation
+from turtle_sim_ode.urdf_model import ModelError
+
+from conftest import TURTLEBOT_URDF
+
+BOX_URDF = """<robot name="box"><link name="box"><inertial><mass value="1"/>
+<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+<gazebo><plugin name="cam" filename="libgazebo_ros_camera.so"/></gazebo></robot>"""
+
+
+def test_spawn_and_delete():
+    sim = Simulation()
+    assert sim.spawn_urdf("mobile_base", TURTLEBOT_URDF) == []
+    assert "mobile_base" in sim.robots
+    warnings = sim.spawn_urdf("box", BOX_URDF, (2, 0, 0.1, 0, 0, 0))
+    assert warnings == ["plugin libgazebo_ros_camera.so (cam) is not supported: ignored"]
+    assert "box" not in sim.robots
+    sim.delete("box")
+    assert set(sim.models) == {"mobile_base"}
+    with pytest.raises(KeyError):
+        sim.delete("box")
+
+
+@pytest.mark.parametrize("name, urdf, message", [
+    ("", BOX_URDF, "model name is empty"),
+    ("mobile_base", BOX_URDF, "a model named 'mobile_base' already exists"),
+    ("broken", "<robot", "line 1"),
+    ("wrong_joint", TURTLEBOT_URDF.replace("<left_wheel_joint_name>wheel_left_joint",
+                                           "<left_wheel_joint_name>no_such_joint"), "no_such_joint"),
+])
+def test_bad_spawns_leave_the_world_unchanged(name, urdf, message):
+    sim = Simulation()
+    sim.spawn_urdf("mobile_base", TURTLEBOT_URDF)
+    bodies_before = len(sim.models["mobile_base"].bodies)
+    with pytest.raises(ModelError) as error:
+        sim.spawn_urdf(name, urdf)
+    assert message in str(error.value)
+    assert set(sim.models) == {"mobile_base"} and len(sim.models["mobile_base"].bodies) == bodies_before
+
+
+def test_step_drives_every_robot():
+    sim = Simulation()
+    sim.spawn_urdf("a", TURTLEBOT_URDF, (0, 0, 0, 0, 0, 0))
+    sim.spawn_urdf("b", TURTLEBOT_URDF, (0, 2, 0, 0, 0, math.pi / 2))
+    for name in ("a", "b"):
+        sim.robots[name].drive.set_command(0.2, 0.0, sim.sim_time)
+    for _ in range(500):
+        sim.step()
+    for name in ("a", "b"):
+        sim.robots[name].update_odometry(sim.sim_time)
+    a, _ = sim.models["a"].link_pose("base_footprint")
+    b, _ = sim.models["b"].link_pose("base_footprint")
+    assert a[0] > 0.05 and abs(a[1]) < 0.01
+    assert b[1] > 2.05 and abs(b[0]) < 0.01
