@@ -23,7 +23,7 @@ for suite in catkin_ws/src/*/test/unit scripts/tests; do
 done
 
 echo "== gtest and rostest (catkin_make run_tests)"
-(cd catkin_ws && catkin_make run_tests -j1 > "$repo/run_tests.log" 2>&1)
+(cd catkin_ws && catkin_make run_tests -j2 > "$repo/run_tests.log" 2>&1)
 run_tests_status=$?
 if [ "$run_tests_status" -ne 0 ]; then
   # A test target that does not build leaves no result file of its own: record the failure.
