@@ -69,9 +69,12 @@ def pose_transform(pose: Pose) -> Transform:
 # --- handles -------------------------------------------------------------------------
 @dataclass(frozen=True)
 class LinkFrame:
-    """Where a URDF link frame sits on its ODE body (whose frame is at the body's COM)."""
+    """Where a URDF link frame sits on its ODE body (whose frame is at the body's COM).
 
-    body: ode.Body
+    Links of a static model have no body; their offset is their world pose.
+    """
+
+    body: Optional[ode.Body]
     offset: Transform
 
 
@@ -129,6 +132,15 @@ def _after_step_hook(continuous: List[JointHandle],
     return after_step
 
 
+def _remove_static_geoms(physics: PhysicsWorld, space: ode.SpaceBase,
+                         geoms: Dict[str, List[ode.GeomObject]]) -> None:
+    """Take a static model's geoms out of the shared static space."""
+    for link_geoms in geoms.values():
+        for geom in link_geoms:
+            physics.unregister_geom(geom)
+            space.remove(geom)
+
+
 class BuiltModel:
     """One URDF model in a PhysicsWorld: link poses, joints, teleport and removal."""
 
@@ -171,6 +183,8 @@ class BuiltModel:
     def link_transform(self, link: str) -> Transform:
         """World pose of a URDF link frame as (position, quaternion wxyz)."""
         frame = self._frame(link)
+        if frame.body is None:
+            return frame.offset
         return compose((frame.body.getPosition(), frame.body.getQuaternion()), frame.offset)
 
     def link_pose(self, link: str) -> Tuple[Vec3, Quat]:
@@ -181,14 +195,17 @@ class BuiltModel:
     def link_twist(self, link: str) -> Tuple[Vec3, Vec3]:
         """World-frame (linear velocity of the link origin, angular velocity)."""
         frame = self._frame(link)
+        if frame.body is None:
+            return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
         position, _ = self.link_transform(link)
         return frame.body.getPointVel(position), frame.body.getAngularVel()
 
     def set_pose(self, x: float, y: float, z: float,
                  roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0) -> None:
-        """Teleport so the root link is at this pose; joints keep their positions, velocities
-        become zero."""
-        target = ((x, y, z), quat_from_rpy(roll, pitch, yaw))
+        """Teleport so the model frame (a URDF's root link) is at this pose; joints keep their
+        positions, velocities become zero."""
+        target = compose(((x, y, z), quat_from_rpy(roll, pitch, yaw)),
+                         pose_transform(self.robot.root_pose))
         move = compose(target, inverse(self.link_transform(self.root_link)))
         for body in self.bodies:
             position, quaternion = compose(move, (body.getPosition(), body.getQuaternion()))
@@ -196,6 +213,13 @@ class BuiltModel:
             body.setQuaternion(quaternion)
             body.setLinearVel((0.0, 0.0, 0.0))
             body.setAngularVel((0.0, 0.0, 0.0))
+        if self.robot.static:
+            for geom in (geom for link_geoms in self.geoms.values() for geom in link_geoms):
+                position, quaternion = compose(move, (geom.getPosition(), geom.getQuaternion()))
+                geom.setPosition(position)
+                geom.setQuaternion(quaternion)
+            self.links = {name: LinkFrame(None, compose(move, frame.offset))
+                          for name, frame in self.links.items()}
 
     def remove(self) -> None:
         """Destroy all bodies, geoms and joints of this model."""
@@ -203,7 +227,10 @@ class BuiltModel:
             return
         if self._hook is not None:
             self._physics.remove_post_step_hook(self._hook)
-        self._physics.destroy_model_space(self._space)
+        if self.robot.static:
+            _remove_static_geoms(self._physics, self._space, self.geoms)
+        else:
+            self._physics.destroy_model_space(self._space)
         for handle in self.joints.values():
             handle.joint.attach(None, None)
         for body in self.bodies:
@@ -263,19 +290,47 @@ def _surface_for(robot: RobotModel, link: str, default: SurfaceParams) -> Surfac
         kd=default.kd if tags.kd is None else tags.kd)
 
 
+def _build_static(physics: PhysicsWorld, robot: RobotModel,
+                  world_of: Dict[str, Transform]) -> BuiltModel:
+    """Body-less collision geoms in the physics' static space, at the links' world poses."""
+    space = physics.static_space
+    links: Dict[str, LinkFrame] = {}
+    geoms: Dict[str, List[ode.GeomObject]] = {}
+    try:
+        for link, transform in world_of.items():
+            links[link] = LinkFrame(None, transform)
+            surface = _surface_for(robot, link, physics.params.default_surface)
+            geoms[link] = []
+            for collision in robot.links[link].collisions:
+                geom = _create_geom(space, collision.geometry)
+                geoms[link].append(geom)
+                position, quaternion = compose(transform, pose_transform(collision.origin))
+                geom.setPosition(position)
+                geom.setQuaternion(quaternion)
+                physics.register_geom(geom, surface)
+    except Exception:
+        _remove_static_geoms(physics, space, geoms)
+        raise
+    return BuiltModel(physics, robot, space, [], links, geoms, {}, [])
+
+
 def build_model(physics: PhysicsWorld, robot: RobotModel,
                 pose: Sequence[float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
                 self_collide: bool = False) -> BuiltModel:
-    """Create the model with its root link at pose (x, y, z, roll, pitch, yaw).
+    """Create the model with its model frame (a URDF's root link) at pose (x, y, z, roll,
+    pitch, yaw).
 
     Links attached by fixed joints are merged into their parent's body (mass, COM and
-    inertia combined, collisions kept). ODE bodies sit at their COM, oriented like the
-    link that owns them; each link remembers its offset on the body.
+    inertia combined, collisions kept); a "floating" joint leaves its child a free body.
+    ODE bodies sit at their COM, oriented like the link that owns them; each link
+    remembers its offset on the body. A static model gets no bodies: its collision geoms
+    are fixed in the world, in ``physics.static_space``.
     """
     if len(pose) != 6 or not all(math.isfinite(v) for v in pose):
         raise ValueError(f"pose must be 6 finite numbers (x, y, z, roll, pitch, yaw), got {pose!r}")
     world_of: Dict[str, Transform] = {
-        robot.root: ((pose[0], pose[1], pose[2]), quat_from_rpy(*pose[3:]))}
+        robot.root: compose(((pose[0], pose[1], pose[2]), quat_from_rpy(*pose[3:])),
+                            pose_transform(robot.root_pose))}
     owner: Dict[str, str] = {robot.root: robot.root}  # link -> link whose body carries it
     members_of: Dict[str, List[str]] = {robot.root: [robot.root]}  # the reverse, in BFS order
     child_joints: Dict[str, List[Joint]] = {}
@@ -288,6 +343,8 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
             owner[joint.child] = owner[link] if joint.type == "fixed" else joint.child
             members_of.setdefault(owner[joint.child], []).append(joint.child)
             order.append(joint.child)
+    if robot.static:
+        return _build_static(physics, robot, world_of)
 
     space = physics.create_model_space(self_collide)
     bodies: Dict[str, ode.Body] = {}
@@ -336,10 +393,10 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
         joints: Dict[str, JointHandle] = {}
         damping: List[Tuple[JointHandle, float]] = []
         for joint in robot.joints.values():
-            if joint.type == "fixed":
+            if joint.type in ("fixed", "floating"):
                 continue
             child, parent = bodies[joint.child], bodies[owner[joint.parent]]
-            anchor, rotation = world_of[joint.child]
+            anchor, rotation = compose(world_of[joint.child], pose_transform(joint.frame))
             axis = quat_rotate(rotation, joint.axis)
             if joint.type == "prismatic":
                 ode_joint = ode.SliderJoint(physics.world)

@@ -109,6 +109,9 @@ class Joint:
     axis: Vec3 = (1.0, 0.0, 0.0)
     limits: Optional[JointLimits] = None
     dynamics: JointDynamics = JointDynamics()
+    # SDF <joint><pose>: the joint frame (anchor, and the frame ``axis`` is in) relative to
+    # the child link frame. URDF joint frames are the child link frame.
+    frame: Pose = Pose()
 
 
 @dataclass(frozen=True)
@@ -139,6 +142,10 @@ class RobotModel:
     surfaces: Dict[str, GazeboSurface] = field(default_factory=dict)
     plugins: List[GazeboPlugin] = field(default_factory=list)
     warnings: List[str] = field(default_factory=list)
+    # SDF: the root link's pose in the model frame, which build_model places at its pose.
+    root_pose: Pose = Pose()
+    # SDF <static>: collision geoms fixed in the world, no bodies.
+    static: bool = False
 
     def plugin(self, filename: str) -> Optional[GazeboPlugin]:
         """The first plugin loaded from ``filename`` (e.g. 'libgazebo_ros_kobuki.so')."""

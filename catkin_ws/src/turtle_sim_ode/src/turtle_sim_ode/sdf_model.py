@@ -1,0 +1,555 @@
+"""Parse SDF 1.4-1.7 models and worlds (no file access) into urdf_model's RobotModel.
+
+SDF places every link relative to the model; the URDF-style tree that model_builder
+consumes has each joint's origin = parent link pose^-1 * child link pose, and the root
+link's model pose in ``RobotModel.root_pose``. Links no joint reaches (free bodies in
+SDF) hang off the root by "floating" joints, which the builder turns into free bodies.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Dict, List, Optional, Set, Tuple
+from xml.etree.ElementTree import Element, ParseError
+
+import defusedxml
+import defusedxml.ElementTree as SafeET
+
+from .model_builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
+from .urdf_model import (MAX_JOINTS, MAX_LINKS, MAX_URDF_CHARS, MESH_PLACEHOLDER_EDGE, Box, Collision,
+                         Cylinder, GazeboPlugin, GazeboSurface, Geometry, Inertial, Joint, JointDynamics,
+                         JointLimits, Link, ModelError, Pose, RobotModel, Sphere, Vec3, _find_root,
+                         _is_positive_definite, _number, _vec3)
+
+if TYPE_CHECKING:
+    from .physics import PhysicsParams
+
+Version = Tuple[int, int]
+
+OLDEST_VERSION: Version = (1, 4)
+NEWEST_VERSION: Version = (1, 7)
+# A bare <model> (no <sdf version>) is read with the newest conventions.
+BARE_MODEL_VERSION: Version = NEWEST_VERSION
+JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
+# SDF's default joint limits, meaning "no limit".
+UNLIMITED = 1e16
+# A <plane> (static models only) becomes a box this thick whose top face is the plane:
+# thick enough that nothing tunnels through it in a step, and no ODE plane (an infinite
+# half-space) that would also catch everything below it.
+PLANE_THICKNESS = 0.1
+SURFACE_PATHS = {"mu1": "friction/ode/mu", "mu2": "friction/ode/mu2", "kp": "contact/ode/kp",
+                 "kd": "contact/ode/kd", "max_vel": "contact/ode/max_vel",
+                 "min_depth": "contact/ode/min_depth"}
+# <world> children that change nothing the simulator models.
+SILENT_WORLD_TAGS = ("light", "scene", "gui", "atmosphere", "spherical_coordinates",
+                     "magnetic_field", "wind", "audio")
+GROUND_PLANE_URI = "model://ground_plane"
+SUN_URI = "model://sun"
+# Gazebo's own inline copy of its ground plane (worlds saved from the GUI contain one).
+GROUND_PLANE_NAME = "ground_plane"
+
+
+@dataclass(frozen=True)
+class SdfPhysics:
+    """<physics type="ode"> and <gravity>; None where the world leaves the simulator's default."""
+
+    max_step_size: Optional[float] = None
+    real_time_factor: Optional[float] = None
+    real_time_update_rate: Optional[float] = None
+    solver: Optional[str] = None
+    iterations: Optional[int] = None
+    cfm: Optional[float] = None
+    erp: Optional[float] = None
+    contact_max_correcting_vel: Optional[float] = None
+    contact_surface_layer: Optional[float] = None
+    gravity: Optional[Vec3] = None
+
+    def apply(self, params: PhysicsParams) -> PhysicsParams:
+        """A copy of ``params`` with the values this world sets (real-time pacing is the
+        caller's); ModelError if they are out of range."""
+        given = {"time_step": self.max_step_size, "solver": self.solver,
+                 "solver_iterations": self.iterations, "cfm": self.cfm, "erp": self.erp,
+                 "contact_max_correcting_vel": self.contact_max_correcting_vel,
+                 "contact_surface_layer": self.contact_surface_layer, "gravity": self.gravity}
+        result = replace(params, **{k: v for k, v in given.items() if v is not None})
+        try:
+            result.validate()
+        except ValueError as error:
+            raise ModelError(f"world <physics>: {error}") from None
+        return result
+
+
+@dataclass(frozen=True)
+class WorldModel:
+    """A <model> written inline in the world, at ``pose`` (its model frame)."""
+
+    name: str
+    pose: Pose
+    model: RobotModel
+
+    @property
+    def spawn_pose(self) -> Tuple[float, float, float, float, float, float]:
+        """(x, y, z, roll, pitch, yaw) for build_model."""
+        return self.pose.xyz + self.pose.rpy
+
+
+@dataclass(frozen=True)
+class Include:
+    """An <include> for the caller to resolve (model:// files are never opened here)."""
+
+    uri: str
+    name: Optional[str] = None
+    pose: Pose = Pose()
+    static: Optional[bool] = None
+
+
+@dataclass
+class World:
+    """<world>: physics, inline models, includes for the caller, world plugins."""
+
+    name: str
+    physics: SdfPhysics
+    models: List[WorldModel] = field(default_factory=list)
+    includes: List[Include] = field(default_factory=list)
+    plugins: List[GazeboPlugin] = field(default_factory=list)
+    # model://ground_plane (or an inline "ground_plane" model): the physics ground at z=0.
+    ground_plane: bool = False
+    sun: bool = False
+    warnings: List[str] = field(default_factory=list)
+
+
+# --- small helpers ------------------------------------------------------------------
+def _rpy(q: Quat) -> Vec3:
+    """Fixed-axis roll, pitch, yaw of a quaternion (inverse of quat_from_rpy)."""
+    m = quat_matrix(q)
+    cos_pitch = math.hypot(m[0][0], m[1][0])
+    pitch = math.atan2(-m[2][0], cos_pitch)
+    if cos_pitch < 1e-9:  # gimbal lock: only roll and yaw together are defined; all in yaw
+        return (0.0, pitch, math.atan2(-m[0][1], m[1][1]))
+    return (math.atan2(m[2][1], m[2][2]), pitch, math.atan2(m[1][0], m[0][0]))
+
+
+def _as_pose(transform: Transform) -> Pose:
+    return Pose(transform[0], _rpy(transform[1]))
+
+
+def _text(element: Element, path: str) -> Optional[str]:
+    found = element.find(path)
+    if found is None or found.text is None or not found.text.strip():
+        return None
+    return found.text.strip()
+
+
+def _optional_float(element: Element, path: str, what: str) -> Optional[float]:
+    text = _text(element, path)
+    return None if text is None else _number(text, f"{what} <{path}>")
+
+
+def _float(element: Element, path: str, what: str, default: float) -> float:
+    value = _optional_float(element, path, what)
+    return default if value is None else value
+
+
+def _bool(element: Element, path: str, what: str, default: bool) -> bool:
+    text = _text(element, path)
+    if text is None:
+        return default
+    if text.lower() in ("true", "1"):
+        return True
+    if text.lower() in ("false", "0"):
+        return False
+    raise ModelError(f"{what} <{path}>: expected true or false, got {text!r}")
+
+
+def _required(element: Element, attribute: str, what: str) -> str:
+    value = element.get(attribute)
+    if not value:
+        raise ModelError(f"{what}: missing attribute '{attribute}'")
+    return value
+
+
+def _pose(element: Element, what: str) -> Pose:
+    """The <pose> child: "x y z roll pitch yaw" relative to the default frame."""
+    pose = element.find("pose")
+    if pose is None:
+        return Pose()
+    for attribute in ("relative_to", "frame"):
+        if pose.get(attribute):
+            raise ModelError(f"{what} <pose {attribute}='{pose.get(attribute)}'>: only poses "
+                             f"in the default frame are supported")
+    parts = (pose.text or "").split()
+    if not parts:
+        return Pose()
+    if len(parts) != 6:
+        raise ModelError(f"{what} <pose>: expected 6 numbers, got {pose.text!r}")
+    values = [_number(p, f"{what} <pose>") for p in parts]
+    return Pose((values[0], values[1], values[2]), (values[3], values[4], values[5]))
+
+
+def _plugin(element: Element, what: str) -> GazeboPlugin:
+    return GazeboPlugin(_required(element, "filename", f"{what} <plugin>"), element.get("name", ""),
+                        {child.tag: (child.text or "").strip() for child in element})
+
+
+def _parse_xml(text: str) -> Element:
+    if len(text) > MAX_URDF_CHARS:
+        raise ModelError(f"SDF is {len(text)} characters, more than the {MAX_URDF_CHARS} allowed")
+    try:
+        return SafeET.fromstring(text)
+    except ParseError as error:
+        line, column = error.position
+        reason = str(error).split(":")[0]  # expat appends the position we report ourselves
+        raise ModelError(f"SDF is not well-formed XML at line {line}, column {column}: "
+                         f"{reason}") from None
+    except defusedxml.DefusedXmlException as error:
+        raise ModelError(f"SDF rejected by the XML guard: {error}") from None
+
+
+def _version(sdf: Element) -> Version:
+    text = sdf.get("version")
+    try:
+        major, minor = (int(part) for part in (text or "").split("."))
+    except ValueError:
+        raise ModelError(f"<sdf version={text!r}>: expected a version such as '1.6'") from None
+    if not OLDEST_VERSION <= (major, minor) <= NEWEST_VERSION:
+        raise ModelError(f"SDF version {text} is not supported (1.4 to 1.7)")
+    return major, minor
+
+
+# --- model parts ----------------------------------------------------------------------
+def _parse_inertial(element: Optional[Element], link: str, warnings: List[str]) -> Inertial:
+    what = f"link '{link}' <inertial>"
+    if element is None:
+        warnings.append(f"link '{link}' has no <inertial>: SDF's default mass 1 kg and "
+                        f"inertia 1 kg m^2 are used")
+        return Inertial(1.0, Pose(), 1.0, 0.0, 0.0, 1.0, 0.0, 1.0)
+    mass = _float(element, "mass", what, 1.0)
+    if mass <= 0:
+        raise ModelError(f"{what}: mass must be > 0, got {mass}")
+    values = {k: _float(element, f"inertia/{k}", what, 1.0 if k in ("ixx", "iyy", "izz") else 0.0)
+              for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    result = Inertial(mass, _pose(element, what), **values)
+    if not _is_positive_definite(result.matrix()):
+        raise ModelError(f"{what}: inertia matrix is not positive definite ({values})")
+    return result
+
+
+def _positive(element: Element, path: str, what: str, default: float) -> float:
+    value = _float(element, path, what, default)
+    if value <= 0:
+        raise ModelError(f"{what} <{path}> must be > 0, got {value}")
+    return value
+
+
+def _plane_to_z(normal: Vec3) -> Quat:
+    """Rotation taking +z to the unit vector ``normal``."""
+    w = 1.0 + normal[2]
+    if w < 1e-9:  # upside down: half a turn about x
+        return (0.0, 1.0, 0.0, 0.0)
+    x, y = -normal[1], normal[0]  # z x normal
+    norm = math.sqrt(w * w + x * x + y * y)
+    return (w / norm, x / norm, y / norm, 0.0)
+
+
+def _parse_geometry(element: Optional[Element], what: str, static: bool,
+                    warnings: List[str]) -> Tuple[Geometry, Transform]:
+    """The shape and where it sits in the collision frame."""
+    identity: Transform = ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
+    shape = None if element is None else next(iter(element), None)
+    if shape is None:
+        raise ModelError(f"{what}: missing <geometry> shape")
+    what = f"{what} <{shape.tag}>"
+    if shape.tag == "box":
+        size = _vec3(_text(shape, "size"), f"{what} <size>", (1.0, 1.0, 1.0))
+        if min(size) <= 0:
+            raise ModelError(f"{what} <size> must be > 0, got {size}")
+        return Box(size), identity
+    if shape.tag == "cylinder":
+        return (Cylinder(_positive(shape, "radius", what, 0.5), _positive(shape, "length", what, 1.0)),
+                identity)
+    if shape.tag == "sphere":
+        return Sphere(_positive(shape, "radius", what, 1.0)), identity
+    if shape.tag == "plane":
+        if not static:
+            raise ModelError(f"{what}: planes are only supported in static models")
+        normal = _vec3(_text(shape, "normal"), f"{what} <normal>", (0.0, 0.0, 1.0))
+        length = math.sqrt(sum(n * n for n in normal))
+        if length < 1e-9:
+            raise ModelError(f"{what} <normal> must not be zero")
+        normal = (normal[0] / length, normal[1] / length, normal[2] / length)
+        size = (_text(shape, "size") or "1 1").split()
+        if len(size) != 2:
+            raise ModelError(f"{what} <size>: expected 2 numbers, got {' '.join(size)!r}")
+        sx, sy = (_number(s, f"{what} <size>") for s in size)
+        if min(sx, sy) <= 0:
+            raise ModelError(f"{what} <size> must be > 0, got {sx} {sy}")
+        half = PLANE_THICKNESS / 2
+        return (Box((sx, sy, PLANE_THICKNESS)),
+                ((-half * normal[0], -half * normal[1], -half * normal[2]), _plane_to_z(normal)))
+    if shape.tag == "mesh":
+        scale = _vec3(_text(shape, "scale"), f"{what} <scale>", (1.0, 1.0, 1.0))
+        size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
+        if min(size) <= 0:
+            raise ModelError(f"{what} <scale> must not be zero, got {scale}")
+        warnings.append(f"{what}: mesh '{_text(shape, 'uri') or ''}' is not loaded; colliding "
+                        f"with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead")
+        return Box(size), identity  # type: ignore[arg-type]
+    raise ModelError(f"{what}: unsupported geometry")
+
+
+def _parse_surface(element: Optional[Element], what: str) -> Dict[str, float]:
+    if element is None:
+        return {}
+    values = {}
+    for key, path in SURFACE_PATHS.items():
+        value = _optional_float(element, path, f"{what} <surface>")
+        if value is not None:
+            values[key] = value
+    return values
+
+
+def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link, Pose]:
+    """The link and its pose in the model; its <surface> values go to ``model.surfaces``."""
+    name = _required(element, "name", "<link>")
+    what = f"link '{name}'"
+    for flag, normal in (("kinematic", False), ("gravity", True)):
+        if not static and _bool(element, flag, what, normal) != normal:
+            model.warnings.append(f"{what}: <{flag}> is not supported, ignored")
+    link = Link(name, None if static else
+                _parse_inertial(element.find("inertial"), name, model.warnings))
+    surface: Dict[str, float] = {}
+    for index, collision in enumerate(element.findall("collision")):
+        collision_name = collision.get("name") or f"{name}_collision_{index}"
+        where = f"{what} collision '{collision_name}'"
+        geometry, offset = _parse_geometry(collision.find("geometry"), where, static, model.warnings)
+        link.collisions.append(Collision(
+            collision_name, _as_pose(compose(pose_transform(_pose(collision, where)), offset)),
+            geometry))
+        values = _parse_surface(collision.find("surface"), where)
+        if any(surface.get(key, value) != value for key, value in values.items()):
+            model.warnings.append(f"{what}: its collisions have different <surface> values; "
+                                  f"the link gets one surface, the last collision's values win")
+        surface.update(values)
+    if surface:
+        model.surfaces[name] = GazeboSurface(**surface)
+    return link, _pose(element, what)
+
+
+def _axis(element: Element, what: str, version: Version, joint_in_model: Transform,
+          link_poses: Dict[str, Transform]) -> Vec3:
+    """The unit joint axis in the joint frame, whatever frame the SDF version writes it in."""
+    xyz = _vec3(_text(element, "xyz"), f"{what} <axis><xyz>", (0.0, 0.0, 1.0))
+    norm = math.sqrt(sum(a * a for a in xyz))
+    if norm < 1e-9:
+        raise ModelError(f"{what}: axis must not be zero")
+    xyz = (xyz[0] / norm, xyz[1] / norm, xyz[2] / norm)
+    # 1.4: always the model frame. 1.5, 1.6: the joint frame unless <use_parent_model_frame>.
+    # 1.7: the joint frame unless <xyz expressed_in="__model__" or a link name>.
+    if version == (1, 4):
+        frame: Optional[str] = "__model__"
+    elif version < (1, 7):
+        frame = "__model__" if _bool(element, "use_parent_model_frame", what, False) else None
+    else:
+        xyz_element = element.find("xyz")
+        frame = (xyz_element.get("expressed_in") or None) if xyz_element is not None else None
+    if frame is None:
+        return xyz
+    if frame == "__model__":
+        in_model = xyz
+    elif frame in link_poses:
+        in_model = quat_rotate(link_poses[frame][1], xyz)
+    else:
+        raise ModelError(f"{what} <xyz expressed_in='{frame}'>: only '__model__' and link names "
+                         f"are supported")
+    w, x, y, z = joint_in_model[1]
+    return quat_rotate((w, -x, -y, -z), in_model)
+
+
+def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Transform],
+                 warnings: List[str]) -> Joint:
+    name = _required(element, "name", "<joint>")
+    what = f"joint '{name}'"
+    joint_type = _required(element, "type", what)
+    if joint_type not in JOINT_TYPES:
+        raise ModelError(f"{what}: unsupported type '{joint_type}' (supported: {JOINT_TYPES})")
+    parent, child = _text(element, "parent"), _text(element, "child")
+    if parent is None or child is None:
+        raise ModelError(f"{what}: needs <parent> and <child>")
+    if parent == "world":
+        raise ModelError(f"{what}: joints to the world are not supported; make the model "
+                         f"<static> instead of fixing it to the world")
+    for role, link in (("parent", parent), ("child", child)):
+        if link not in link_poses:
+            raise ModelError(f"{what}: {role} link '{link}' does not exist")
+    frame = _pose(element, what)
+    joint_in_model = compose(link_poses[child], pose_transform(frame))
+    axis_element = element.find("axis")
+    axis: Vec3 = (0.0, 0.0, 1.0)
+    limits, dynamics = None, JointDynamics()
+    if joint_type != "fixed":
+        if axis_element is None:  # SDF's defaults: z axis, no limits, no dynamics
+            axis_element = Element("axis")
+        axis = _axis(axis_element, what, version, joint_in_model, link_poses)
+        limit = axis_element.find("limit")
+        if limit is not None:
+            limits = JointLimits(*(_float(limit, key, what, default) for key, default in (
+                ("lower", -UNLIMITED), ("upper", UNLIMITED), ("effort", -1.0),
+                ("velocity", -1.0))))
+            if limits.lower > limits.upper:
+                raise ModelError(f"{what}: limit lower {limits.lower} > upper {limits.upper}")
+        if joint_type == "revolute" and (
+                limits is None or (limits.lower <= -UNLIMITED and limits.upper >= UNLIMITED)):
+            joint_type = "continuous"
+        dynamics = JointDynamics(_float(axis_element, "dynamics/damping", what, 0.0),
+                                 _float(axis_element, "dynamics/friction", what, 0.0))
+        if _float(axis_element, "dynamics/spring_stiffness", what, 0.0) != 0.0:
+            warnings.append(f"{what}: <spring_stiffness> is not supported, ignored")
+    origin = _as_pose(compose(inverse(link_poses[parent]), link_poses[child]))
+    return Joint(name, joint_type, parent, child, origin, axis, limits, dynamics, frame)
+
+
+def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
+    """The model and its own <pose>."""
+    name = _required(element, "name", "<model>")
+    what = f"model '{name}'"
+    for nested in ("model", "include"):
+        if element.find(nested) is not None:
+            raise ModelError(f"{what}: nested <{nested}> is not supported")
+    static = _bool(element, "static", what, False)
+    link_elements, joint_elements = element.findall("link"), element.findall("joint")
+    if not link_elements:
+        raise ModelError(f"{what} has no <link>")
+    if len(link_elements) > MAX_LINKS or len(joint_elements) > MAX_JOINTS:
+        raise ModelError(f"{what} too large: {len(link_elements)} links, {len(joint_elements)} "
+                         f"joints (limits {MAX_LINKS}, {MAX_JOINTS})")
+    model = RobotModel(name, {}, {}, "", static=static)
+    link_poses: Dict[str, Transform] = {}
+    for link_element in link_elements:
+        link, pose = _parse_link(link_element, static, model)
+        if link.name in model.links:
+            raise ModelError(f"{what}: duplicate link name '{link.name}'")
+        model.links[link.name] = link
+        link_poses[link.name] = pose_transform(pose)
+    for joint_element in joint_elements:
+        joint = _parse_joint(joint_element, version, link_poses, model.warnings)
+        if joint.name in model.joints:
+            raise ModelError(f"{what}: duplicate joint name '{joint.name}'")
+        model.joints[joint.name] = joint
+    children = {joint.child for joint in model.joints.values()}
+    roots = [link for link in model.links if link not in children]
+    for free in roots[1:]:  # SDF links without a joint are free bodies
+        model.joints[f"__free_{free}"] = Joint(
+            f"__free_{free}", "floating", roots[0], free,
+            _as_pose(compose(inverse(link_poses[roots[0]]), link_poses[free])))
+    model.root = _find_root(model.links, model.joints)
+    model.root_pose = _as_pose(link_poses[model.root])
+    model.plugins.extend(_plugin(p, what) for p in element.findall("plugin"))
+    if _bool(element, "self_collide", what, False):
+        model.warnings.append(f"{what}: <self_collide> is not applied; build it with "
+                              f"self_collide=True")
+    return model, _pose(element, what)
+
+
+# --- public ------------------------------------------------------------------------------
+def parse_sdf_model(text: str) -> RobotModel:
+    """Parse ``<sdf version><model>`` or a bare ``<model>`` (read as SDF 1.7).
+
+    The model's own <pose> is not applied: build_model's pose places the model frame.
+    """
+    root = _parse_xml(text)
+    if root.tag == "model":
+        return _parse_model(root, BARE_MODEL_VERSION)[0]
+    if root.tag != "sdf":
+        raise ModelError(f"SDF root element must be <sdf> or <model>, got <{root.tag}>")
+    version = _version(root)
+    if root.find("world") is not None:
+        raise ModelError("this SDF holds a <world>; use parse_sdf_world")
+    models = root.findall("model")
+    if len(models) != 1:
+        raise ModelError(f"expected one <model> in <sdf>, found {len(models)}")
+    return _parse_model(models[0], version)[0]
+
+
+def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
+    blocks = world.findall("physics")
+    chosen = next((b for b in blocks if b.get("default", "").lower() in ("true", "1")),
+                  blocks[0] if blocks else Element("physics"))
+    what = "<physics>"
+    if chosen.get("type", "ode") != "ode":
+        warnings.append(f"<physics type='{chosen.get('type')}'>: only its ODE settings are read")
+    # SDF 1.4 keeps gravity in <physics>, later versions in <world>.
+    gravity_text = _text(world, "gravity") or _text(chosen, "gravity")
+    solver = _text(chosen, "ode/solver/type")
+    if solver not in (None, "quick", "world"):
+        raise ModelError(f"{what} <ode><solver><type>: expected quick or world, got {solver!r}")
+    iterations = _optional_float(chosen, "ode/solver/iters", what)
+    if iterations is not None and (iterations != int(iterations) or iterations < 1):
+        raise ModelError(f"{what} <ode><solver><iters>: expected a positive integer, "
+                         f"got {iterations}")
+    step = _optional_float(chosen, "max_step_size", what)
+    if step is not None and step <= 0:
+        raise ModelError(f"{what} <max_step_size> must be > 0, got {step}")
+    return SdfPhysics(
+        max_step_size=step,
+        real_time_factor=_optional_float(chosen, "real_time_factor", what),
+        real_time_update_rate=_optional_float(chosen, "real_time_update_rate", what),
+        solver=solver,
+        iterations=None if iterations is None else int(iterations),
+        cfm=_optional_float(chosen, "ode/constraints/cfm", what),
+        erp=_optional_float(chosen, "ode/constraints/erp", what),
+        contact_max_correcting_vel=_optional_float(
+            chosen, "ode/constraints/contact_max_correcting_vel", what),
+        contact_surface_layer=_optional_float(chosen, "ode/constraints/contact_surface_layer", what),
+        gravity=None if gravity_text is None else _vec3(gravity_text, "<gravity>", (0.0, 0.0, 0.0)))
+
+
+def parse_sdf_world(text: str) -> World:
+    """Parse ``<sdf version><world>``: physics, inline models, includes (not opened), plugins."""
+    root = _parse_xml(text)
+    if root.tag != "sdf":
+        raise ModelError(f"SDF root element must be <sdf>, got <{root.tag}>")
+    version = _version(root)
+    worlds = root.findall("world")
+    if len(worlds) != 1:
+        raise ModelError(f"expected one <world> in <sdf>, found {len(worlds)}")
+    element = worlds[0]
+    warnings: List[str] = []
+    world = World(element.get("name", "default"), _parse_physics(element, warnings),
+                  warnings=warnings)
+    names: Set[str] = set()
+    for child in element:
+        if child.tag == "model":
+            model, pose = _parse_model(child, version)
+            if model.name == GROUND_PLANE_NAME and model.static:
+                world.ground_plane = True
+                continue
+            if model.name in names:
+                raise ModelError(f"two models are named '{model.name}'")
+            names.add(model.name)
+            world.models.append(WorldModel(model.name, pose, model))
+        elif child.tag == "include":
+            uri = _text(child, "uri")
+            if uri is None:
+                raise ModelError("<include> needs a <uri>")
+            if uri == GROUND_PLANE_URI:
+                world.ground_plane = True
+            elif uri == SUN_URI:
+                world.sun = True
+            else:
+                name = _text(child, "name")
+                if name is not None:
+                    if name in names:
+                        raise ModelError(f"two models are named '{name}'")
+                    names.add(name)
+                static = _text(child, "static")
+                world.includes.append(Include(
+                    uri, name, _pose(child, f"<include> '{uri}'"),
+                    None if static is None else _bool(child, "static", f"<include> '{uri}'", False)))
+        elif child.tag == "plugin":
+            world.plugins.append(_plugin(child, "<world>"))
+        elif child.tag not in SILENT_WORLD_TAGS + ("physics", "gravity"):
+            warnings.append(f"<world> <{child.tag}> is not supported, ignored")
+    if not world.ground_plane:
+        warnings.append("the world has no ground_plane; the simulator's ground at z=0 is "
+                        "there anyway")
+    return world
