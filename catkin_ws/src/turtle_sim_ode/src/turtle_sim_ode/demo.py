@@ -54,7 +54,11 @@ class CircleDemo:
                     elapsed, elapsed / wall if wall > 0 else 0.0, x, y)
                 sys.stdout.write(("\r" + line) if interactive else (line + "\n"))
                 sys.stdout.flush()
-            rate.sleep()
+            try:
+                rate.sleep()
+            except rospy.ROSTimeMovedBackwardsException:
+                # /gazebo/reset_simulation sent sim time back to 0: start the lap again.
+                start_sim, start_wall = rospy.Time.now(), time.monotonic()
         self._cmd.publish(Twist())
         if interactive:
             sys.stdout.write("\n")

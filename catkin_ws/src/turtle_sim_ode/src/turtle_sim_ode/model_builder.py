@@ -17,6 +17,7 @@ Transform = Tuple[Vec3, Quat]
 Matrix3 = Tuple[Vec3, Vec3, Vec3]
 
 _TWO_PI = 2 * math.pi
+_NO_ROTATION: Quat = (1.0, 0.0, 0.0, 0.0)
 
 
 # --- rigid transforms (plain floats: cheaper than numpy for 3-vectors) ----------------
@@ -116,6 +117,13 @@ class JointHandle:
         self._unwrapped += delta
         self._last_wrapped = wrapped
 
+    def resync(self, position: float) -> None:
+        """The bodies were moved so the joint is at ``position``: continuous joints count
+        turns from there (others read their position from ODE anyway)."""
+        if self._read_wrapped is not None:
+            self._unwrapped = position
+            self._last_wrapped = self._read_wrapped()
+
 
 def _after_step_hook(continuous: List[JointHandle],
                      damping: List[Tuple[JointHandle, float]]) -> Callable[[], None]:
@@ -158,6 +166,8 @@ class BuiltModel:
         self._physics = physics
         self._space: Optional[ode.SpaceBase] = space
         continuous = [j for j in joints.values() if j.type == "continuous"]
+        # Shared with the hook: set_damping edits it in place.
+        self._damping = damping
         self._hook: Optional[Callable[[], None]] = None
         if continuous or damping:
             # A closure, not a bound method: the world must not reference this model back,
@@ -200,13 +210,20 @@ class BuiltModel:
         position, _ = self.link_transform(link)
         return frame.body.getPointVel(position), frame.body.getAngularVel()
 
+    def model_transform(self) -> Transform:
+        """World pose of the model frame (a URDF's root link) as (position, quaternion wxyz)."""
+        return compose(self.link_transform(self.root_link),
+                       inverse(pose_transform(self.robot.root_pose)))
+
     def set_pose(self, x: float, y: float, z: float,
                  roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0) -> None:
         """Teleport so the model frame (a URDF's root link) is at this pose; joints keep their
         positions, velocities become zero."""
-        target = compose(((x, y, z), quat_from_rpy(roll, pitch, yaw)),
-                         pose_transform(self.robot.root_pose))
-        move = compose(target, inverse(self.link_transform(self.root_link)))
+        self.set_transform(((x, y, z), quat_from_rpy(roll, pitch, yaw)))
+
+    def set_transform(self, target: Transform) -> None:
+        """``set_pose`` with the model frame's pose as (position, unit quaternion wxyz)."""
+        move = compose(target, inverse(self.model_transform()))
         for body in self.bodies:
             position, quaternion = compose(move, (body.getPosition(), body.getQuaternion()))
             body.setPosition(position)
@@ -220,6 +237,54 @@ class BuiltModel:
                 geom.setQuaternion(quaternion)
             self.links = {name: LinkFrame(None, compose(move, frame.offset))
                           for name, frame in self.links.items()}
+
+    def damping(self, joint: str) -> float:
+        """Viscous damping coefficient of a movable joint (0 if none)."""
+        handle = self.joint(joint)
+        return next((c for h, c in self._damping if h is handle), 0.0)
+
+    def set_damping(self, joint: str, coefficient: float) -> None:
+        """Damping torque (force) = -coefficient * joint rate, from the next step on."""
+        handle = self.joint(joint)
+        self._damping[:] = [(h, c) for h, c in self._damping if h is not handle]
+        if coefficient > 0:
+            self._damping.append((handle, coefficient))
+            if self._hook is None:  # no continuous joints, no damping until now
+                self._hook = _after_step_hook([], self._damping)
+                self._physics.add_post_step_hook(self._hook)
+
+    def set_mass(self, link: str, mass: float, com: Vec3, inertia: Matrix3) -> None:
+        """Give the body carrying ``link`` this mass, centre of mass and inertia about it (both
+        in the link frame). The body's origin follows its COM; links, geoms and joint frames
+        stay where they are, joints keep their positions."""
+        frame = self._frame(link)
+        body = frame.body
+        if body is None:
+            raise ValueError(f"link '{link}' of static model '{self.name}' has no body")
+        (ixx, ixy, ixz), (_, iyy, iyz), (_, _, izz) = _rotated_inertia(frame.offset[1], inertia)
+        ode_mass = ode.Mass()
+        ode_mass.setParameters(mass, 0.0, 0.0, 0.0, ixx, iyy, izz, ixy, ixz, iyz)
+        shift = compose(frame.offset, (com, _NO_ROTATION))[0]  # the new COM in the body frame
+        attached = [h for h in self.joints.values()
+                    if h.joint.getBody(0) is body or h.joint.getBody(1) is body]
+        # (handle, anchor, axis, position) in the world before the move.
+        before = [(h, h.joint.getAnchor() if h.type != "prismatic" else None, h.joint.getAxis(),
+                   h.joint.getPosition() if h.type == "prismatic" else h.joint.getAngle())
+                  for h in attached]
+        moved = compose((body.getPosition(), body.getQuaternion()), (shift, _NO_ROTATION))[0]
+        velocity = body.getPointVel(moved)
+        body.setMass(ode_mass)
+        body.setPosition(moved)
+        body.setLinearVel(velocity)
+        for name, link_frame in list(self.links.items()):
+            if link_frame.body is body:
+                offset = ((link_frame.offset[0][0] - shift[0], link_frame.offset[0][1] - shift[1],
+                           link_frame.offset[0][2] - shift[2]), link_frame.offset[1])
+                self.links[name] = LinkFrame(body, offset)
+                for geom, collision in zip(self.geoms[name], self.robot.links[name].collisions):
+                    geom.setOffsetPosition(compose(offset, pose_transform(collision.origin))[0])
+        for handle, anchor, axis, position in before:
+            _reanchor(handle, anchor, axis, position)
 
     def remove(self) -> None:
         """Destroy all bodies, geoms and joints of this model."""
@@ -243,6 +308,29 @@ class BuiltModel:
         self.geoms = {}
         self.bodies = []
         self._hook = None
+
+
+def _reanchor(handle: JointHandle, anchor: Optional[Vec3], axis: Vec3, position: float) -> None:
+    """Recompute a joint's body-relative frames from its world ``anchor`` and ``axis`` after a
+    body moved under it, so that it still reads ``position``.
+
+    ODE takes the current pose as the joint's zero when its anchor (hinge) or axis (slider)
+    is set, so the child body is briefly moved back to the joint's zero for that.
+    """
+    child = handle.joint.getBody(0)
+    (x, y, z), orientation = child.getPosition(), child.getQuaternion()
+    if anchor is None:  # slider
+        child.setPosition((x - axis[0] * position, y - axis[1] * position, z - axis[2] * position))
+        handle.joint.setAxis(axis)
+    else:
+        sine = math.sin(-position / 2)
+        turn = (math.cos(-position / 2), sine * axis[0], sine * axis[1], sine * axis[2])
+        arm = quat_rotate(turn, (x - anchor[0], y - anchor[1], z - anchor[2]))
+        child.setPosition((anchor[0] + arm[0], anchor[1] + arm[1], anchor[2] + arm[2]))
+        child.setQuaternion(quat_multiply(turn, orientation))
+        handle.joint.setAnchor(anchor)
+    child.setPosition((x, y, z))
+    child.setQuaternion(orientation)
 
 
 # --- building -----------------------------------------------------------------------

@@ -147,18 +147,15 @@ class PhysicsWorld:
         p = self.params
         self.world = ode.World()
         _WORLDS_KEPT_ALIVE.append(self.world)
-        self.world.setGravity(tuple(p.gravity))
-        self.world.setERP(p.erp)
-        self.world.setCFM(p.cfm)
-        self.world.setQuickStepNumIterations(p.solver_iterations)
-        self.world.setContactMaxCorrectingVel(p.contact_max_correcting_vel)
-        self.world.setContactSurfaceLayer(p.contact_surface_layer)
+        self._configure_world()
         self.space = ode.HashSpace()
         self.ground = ode.GeomPlane(None, (0.0, 0.0, 1.0), 0.0)
         # Contact joints live until the next step; dropping a wrapper destroys its joint.
         # (No ode.JointGroup: its destructor double-frees joints that still have wrappers.)
         self._contact_joints: List[ode.ContactJoint] = []
         self._stepper = self.world.quickStep if p.solver == "quick" else self.world.step
+        # sim_time = _time_base + _steps * time_step: exact, and continuous when time_step changes.
+        self._time_base = 0.0
         self._steps = 0
         self._static_space: Optional[ode.SpaceBase] = None
         self._self_colliding: List[ode.SpaceBase] = []
@@ -173,7 +170,7 @@ class PhysicsWorld:
     @property
     def sim_time(self) -> float:
         """Simulated seconds since creation or the last ``reset_time``."""
-        return self._steps * self.params.time_step
+        return self._time_base + self._steps * self.params.time_step
 
     @property
     def time_step(self) -> float:
@@ -185,7 +182,34 @@ class PhysicsWorld:
         return len(self._contact_joints)
 
     def reset_time(self) -> None:
+        self._time_base = 0.0
         self._steps = 0
+
+    # --- settings ------------------------------------------------------------------
+    def _configure_world(self) -> None:
+        p = self.params
+        self.world.setGravity(tuple(p.gravity))
+        self.world.setERP(p.erp)
+        self.world.setCFM(p.cfm)
+        self.world.setQuickStepNumIterations(p.solver_iterations)
+        self.world.setContactMaxCorrectingVel(p.contact_max_correcting_vel)
+        self.world.setContactSurfaceLayer(p.contact_surface_layer)
+
+    def set_params(self, params: PhysicsParams) -> None:
+        """Switch to new settings between steps (ValueError if invalid, nothing changed).
+
+        Sim time stays continuous across a time step change; contact softness, which
+        depends on the time step, is recomputed for the next step.
+        """
+        params.validate()
+        self._time_base, self._steps = self.sim_time, 0
+        self.params = params
+        self._configure_world()
+        self._stepper = self.world.quickStep if params.solver == "quick" else self.world.step
+        self._surfaces[self.ground] = params.ground_surface
+        self._pair_cache.clear()
+        self._ground_tests = [(geom, body, self._pair_contact(self.ground, geom))
+                              for geom, body, _ in self._ground_tests]
 
     # --- spaces and geoms ---------------------------------------------------------
     def create_model_space(self, self_collide: bool = False) -> ode.SpaceBase:

@@ -6,10 +6,12 @@ waits on ROS time itself.
 from __future__ import annotations
 
 import math
+import os
 import threading
 import time
 from typing import Dict, List
 
+import rospkg
 import rospy
 import tf2_ros
 from geometry_msgs.msg import Quaternion, TransformStamped, Twist
@@ -17,9 +19,10 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Empty as EmptyMsg
-from std_srvs.srv import Empty, EmptyResponse
 
+from .gazebo_api import GazeboApi
 from .settings import SettingsError, SimulatorSettings, settings_from_params
+from .sdf_model import parse_sdf_world
 from .simulation import DiffDriveRobot, Simulation
 from .urdf_model import ModelError
 
@@ -45,18 +48,21 @@ class RobotInterface:
     ground-truth odometry out."""
 
     def __init__(self, name: str, robot: DiffDriveRobot, settings: SimulatorSettings,
-                 tf_broadcaster: tf2_ros.TransformBroadcaster, clock: Simulation) -> None:
+                 tf_broadcaster: tf2_ros.TransformBroadcaster, clock: Simulation, robot_namespace: str = "") -> None:
         self.name = name
         self.robot = robot
         self._settings = settings
         self._tf = tf_broadcaster
         self._sim = clock
         self._reset_requested = False
-        self._cmd_sub = rospy.Subscriber(name + "/commands/velocity", Twist, self._on_velocity, queue_size=1)
-        self._reset_sub = rospy.Subscriber(name + "/commands/reset_odometry", EmptyMsg, self._on_reset, queue_size=1)
-        self._odom_pub = rospy.Publisher("odom", Odometry, queue_size=10)
-        self._joint_pub = rospy.Publisher("joint_states", JointState, queue_size=10)
-        self._truth_pub = rospy.Publisher(settings.ground_truth_topic, Odometry, queue_size=10)
+        # A model's robot_namespace prefixes its plugin's topics, as gazebo_ros plugins do.
+        prefix = robot_namespace.strip("/") + "/" if robot_namespace.strip("/") else ""
+        self._cmd_sub = rospy.Subscriber(prefix + name + "/commands/velocity", Twist, self._on_velocity, queue_size=1)
+        self._reset_sub = rospy.Subscriber(prefix + name + "/commands/reset_odometry", EmptyMsg, self._on_reset,
+                                           queue_size=1)
+        self._odom_pub = rospy.Publisher(prefix + "odom", Odometry, queue_size=10)
+        self._joint_pub = rospy.Publisher(prefix + "joint_states", JointState, queue_size=10)
+        self._truth_pub = rospy.Publisher(prefix + settings.ground_truth_topic, Odometry, queue_size=10)
         self._joint_names = [robot.left.name, robot.right.name]
 
     def _on_velocity(self, twist: Twist) -> None:
@@ -152,7 +158,8 @@ class SimulatorNode:
 
     def __init__(self, settings: SimulatorSettings) -> None:
         self.settings = settings
-        self.sim = Simulation(settings.physics, settings.drive_overrides)
+        max_update_rate = settings.real_time_factor / settings.physics.time_step
+        self.sim = Simulation(settings.physics, settings.drive_overrides, max_update_rate)
         # Service calls and topic callbacks run in rospy's threads; the world changes only under this lock.
         self.lock = threading.Lock()
         self._unpaused = threading.Event()
@@ -161,31 +168,36 @@ class SimulatorNode:
         self._clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
         self._tf = tf2_ros.TransformBroadcaster()
         self.interfaces: Dict[str, RobotInterface] = {}
-        self._services = [
-            rospy.Service("~pause_physics", Empty, self._pause),
-            rospy.Service("~unpause_physics", Empty, self._unpause),
-        ]
+        self.api = GazeboApi(self.sim, self.lock, self.add_interface, self._remove_interface, self._set_paused,
+                             lambda: self.paused, settings.model_states_rate)
 
     # --- models -------------------------------------------------------------------------------------------
+    def add_interface(self, name: str, robot_namespace: str) -> None:
+        """The ROS side of a freshly spawned model's drive plugin, if it has one (called under the lock)."""
+        if name in self.sim.robots:
+            self.interfaces[name] = RobotInterface(name, self.sim.robots[name], self.settings, self._tf, self.sim,
+                                                   robot_namespace)
+
+    def _remove_interface(self, name: str) -> None:
+        interface = self.interfaces.pop(name, None)
+        if interface is not None:
+            interface.close()
+
     def spawn_urdf(self, name: str, urdf: str, pose) -> List[str]:
-        """Spawn a model and, for a drive plugin, its ROS interface; ModelError on a bad name or model."""
+        """Spawn a model at start-up; ModelError on a bad name or model."""
         with self.lock:
             warnings = self.sim.spawn_urdf(name, urdf, pose)
-            if name in self.sim.robots:
-                self.interfaces[name] = RobotInterface(name, self.sim.robots[name], self.settings, self._tf, self.sim)
+            self.add_interface(name, "")
         for warning in warnings:
             rospy.logwarn("spawn %s: %s", name, warning)
         rospy.loginfo("spawned model [%s] at x %.3f y %.3f z %.3f yaw %.3f", name, pose[0], pose[1], pose[2], pose[5])
         return warnings
 
-    # --- services -----------------------------------------------------------------------------------------
-    def _pause(self, _request) -> EmptyResponse:
-        self._unpaused.clear()
-        return EmptyResponse()
-
-    def _unpause(self, _request) -> EmptyResponse:
-        self._unpaused.set()
-        return EmptyResponse()
+    def _set_paused(self, paused: bool) -> None:
+        if paused:
+            self._unpaused.clear()
+        else:
+            self._unpaused.set()
 
     @property
     def paused(self) -> bool:
@@ -193,30 +205,35 @@ class SimulatorNode:
 
     # --- main loop ----------------------------------------------------------------------------------------
     def run(self) -> None:
-        """Step until shutdown, publishing /clock and the robots' topics when due, paced to real_time_factor."""
-        settings = self.settings
-        dt = self.sim.physics.time_step
-        clock_steps = max(1, int(round(1.0 / (settings.pub_clock_frequency * dt))))
-        publish_steps = max(1, int(round(1.0 / (settings.publish_rate * dt))))
-        rtf = settings.real_time_factor
-        self._clock_pub.publish(Clock(sim_stamp(self.sim.sim_time)))
-        step = 0
-        anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
+        """Step until shutdown, publishing /clock and the robots' topics when due in sim time, paced to the
+        simulation's real-time factor (which /gazebo/set_physics_properties may change)."""
+        clock_period = 1.0 / self.settings.pub_clock_frequency
+        publish_period = 1.0 / self.settings.publish_rate
+        now = self.sim.sim_time
+        self._clock_pub.publish(Clock(sim_stamp(now)))
+        next_clock, next_publish = now + clock_period, now + publish_period
+        anchor_wall, anchor_sim = time.monotonic(), now
         while not rospy.is_shutdown():
             if not self._unpaused.is_set():
                 self._unpaused.wait(0.1)
                 anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
                 continue
             with self.lock:
+                if self.sim.sim_time < now:  # /gazebo/reset_simulation: time starts again
+                    now = self.sim.sim_time
+                    next_clock, next_publish = now, now
+                    anchor_wall, anchor_sim = time.monotonic(), now
                 self.sim.step()
-                step += 1
                 now = self.sim.sim_time
-                publish_robots = step % publish_steps == 0
-                if publish_robots:
+                if now >= next_publish - 1e-9:
+                    next_publish = max(next_publish + publish_period, now)
                     stamp = sim_stamp(now)
                     for interface in self.interfaces.values():
                         interface.publish(stamp, now)
-            if step % clock_steps == 0:
+                self.api.publish_states(now)
+                rtf = self.sim.real_time_factor
+            if now >= next_clock - 1e-9:
+                next_clock = max(next_clock + clock_period, now)
                 self._clock_pub.publish(Clock(sim_stamp(now)))
             if rtf > 0:
                 delay = anchor_wall + (now - anchor_sim) / rtf - time.monotonic()
@@ -231,6 +248,31 @@ class SimulatorNode:
             interface.close()
 
 
+def resolve_world(world_name: str) -> str:
+    """A world file given as a path, or by file name in this package's worlds/ (as Gazebo's worlds/x.world)."""
+    if os.path.isfile(world_name):
+        return world_name
+    packaged = os.path.join(rospkg.RosPack().get_path("turtle_sim_ode"), "worlds", os.path.basename(world_name))
+    if os.path.isfile(packaged):
+        return packaged
+    raise ModelError("world file '%s' not found (nor %s)" % (world_name, packaged))
+
+
+def load_world(node: SimulatorNode, world_name: str) -> None:
+    path = resolve_world(world_name)
+    with open(path) as world_file:
+        world = parse_sdf_world(world_file.read())
+    with node.lock:
+        warnings = node.sim.load_world(world)
+        # The node's real_time_factor parameter (the launch argument) wins over the world's pacing.
+        node.sim.max_update_rate = node.settings.real_time_factor / node.sim.physics.time_step
+        for model in world.models:
+            node.add_interface(model.name, "")
+    for warning in warnings:
+        rospy.logwarn("world %s: %s", path, warning)
+    rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, [m.name for m in world.models])
+
+
 def main() -> int:
     rospy.init_node("gazebo")
     try:
@@ -239,6 +281,12 @@ def main() -> int:
         rospy.logfatal(str(error))
         return 1
     node = SimulatorNode(settings)
+    if settings.world_name:
+        try:
+            load_world(node, settings.world_name)
+        except (ModelError, OSError) as error:
+            rospy.logfatal("cannot load world [%s]: %s" % (settings.world_name, error))
+            return 1
     if settings.spawn_model_name:
         urdf = rospy.get_param(settings.spawn_robot_description, None)
         if not isinstance(urdf, str):

@@ -25,6 +25,8 @@ class SimulatorSettings:
     paused: bool = False
     pub_clock_frequency: float = 100.0  # Hz of sim time
     publish_rate: float = 50.0  # odom, tf, joint_states, ground truth: Hz of sim time
+    model_states_rate: float = 50.0  # /gazebo/model_states and link_states (while subscribed): Hz of sim time
+    world_name: str = ""  # an SDF world file loaded at start-up
     odom_frame: str = "odom"
     base_frame: str = "base_footprint"
     publish_tf: bool = True
@@ -105,13 +107,14 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
         paused=_typed(params, "paused", defaults.paused, bool),
         pub_clock_frequency=_number(params, "pub_clock_frequency", defaults.pub_clock_frequency, 0.0, True),
         publish_rate=_number(params, "publish_rate", defaults.publish_rate, 0.0, True),
+        model_states_rate=_number(params, "model_states_rate", defaults.model_states_rate, 0.0, True),
         publish_tf=_typed(params, "publish_tf", defaults.publish_tf, bool),
         spawn_pose=tuple(_number(params, "spawn_" + axis, 0.0) for axis in ("x", "y", "z", "roll", "pitch", "yaw")),
         physics=_physics(params),
         drive_overrides=_drive_overrides(params),
     )
-    for name in ("odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame", "spawn_model_name",
-                 "spawn_robot_description"):
+    for name in ("world_name", "odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame",
+                 "spawn_model_name", "spawn_robot_description"):
         setattr(settings, name, _typed(params, name, getattr(defaults, name), str))
     for name in ("odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame"):
         if not getattr(settings, name):

@@ -1,16 +1,23 @@
-"""ROS-free simulation: a PhysicsWorld with named models, and the drive plugins found in their URDFs."""
+"""ROS-free simulation: a PhysicsWorld with named models, the drive plugins found in them, and
+Gazebo's world API over them (see world_control)."""
 from __future__ import annotations
 
 import logging
-from typing import Dict, List, Mapping, Optional, Tuple
+from dataclasses import dataclass
+from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from .diff_drive import DiffDriveController, DiffDriveParams, WheelOdometry
-from .model_builder import BuiltModel, build_model
+from .model_builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
 from .physics import PhysicsParams, PhysicsWorld
-from .urdf_model import GazeboPlugin, ModelError, parse_urdf
+from .sdf_model import World, _rpy, parse_sdf_model
+from .urdf_model import GazeboPlugin, ModelError, RobotModel, parse_urdf
+from .world_control import (SCOPE, WORLD_FRAMES, Load, QuatXYZW, WorldControl, WorldError, update_rate,
+                            vector)
 
 KOBUKI_PLUGIN = "libgazebo_ros_kobuki.so"
 Pose6 = Tuple[float, float, float, float, float, float]
+# (x, y, z, roll, pitch, yaw), or (position, quaternion (x, y, z, w)) as in geometry_msgs/Pose.
+SpawnPose = Union[Sequence[float], Tuple[Vec3, QuatXYZW]]
 
 log = logging.getLogger(__name__)
 
@@ -39,32 +46,69 @@ class DiffDriveRobot:
         self.update_odometry(now)
 
 
-class Simulation:
-    """Models by name in one physics world, stepped with their drives."""
+@dataclass(frozen=True)
+class _Spawned:
+    """What reset_world restores: the model frame's pose (static models), the world pose of one
+    link of each body, and the joint positions, as spawned."""
+
+    pose: Transform
+    link_poses: Dict[str, Transform]
+    joint_positions: Dict[str, float]
+
+    @classmethod
+    def of(cls, model: BuiltModel) -> "_Spawned":
+        link_poses: Dict[str, Transform] = {}
+        bodies = set()
+        for link, frame in model.links.items():
+            if frame.body is not None and id(frame.body) not in bodies:
+                bodies.add(id(frame.body))
+                link_poses[link] = model.link_transform(link)
+        return cls(model.model_transform(), link_poses,
+                   {name: handle.angle() for name, handle in model.joints.items()})
+
+
+class Simulation(WorldControl):
+    """Models by name in one physics world, stepped with their drives and scheduled loads."""
 
     def __init__(self, physics_params: Optional[PhysicsParams] = None,
-                 drive_overrides: Optional[Mapping[str, object]] = None) -> None:
+                 drive_overrides: Optional[Mapping[str, object]] = None,
+                 max_update_rate: Optional[float] = None) -> None:
+        """``max_update_rate``: steps per wall second the node should pace to (Gazebo's
+        real_time_update_rate; 0 = as fast as possible); default: real time."""
         self.physics = PhysicsWorld(physics_params)
         self.models: Dict[str, BuiltModel] = {}
         self.robots: Dict[str, DiffDriveRobot] = {}
+        self.max_update_rate = (1.0 / self.physics.time_step if max_update_rate is None
+                                else update_rate(max_update_rate, "max_update_rate"))
+        self.loads: List[Load] = []
         self._drive_overrides = dict(drive_overrides or {})
+        self._spawned: Dict[str, _Spawned] = {}
 
     @property
     def sim_time(self) -> float:
         return self.physics.sim_time
 
-    def spawn_urdf(self, name: str, urdf: str, pose: Pose6 = (0, 0, 0, 0, 0, 0)) -> List[str]:
-        """Build the URDF as model `name` at pose (x, y, z, roll, pitch, yaw); return the parser's warnings.
+    @property
+    def real_time_factor(self) -> float:
+        """Sim seconds per wall second that ``max_update_rate`` asks for (0: unpaced)."""
+        return self.max_update_rate * self.physics.time_step
 
-        Raises ModelError (a ValueError) with a message for the caller when the name or the model is bad;
-        the world is left as it was.
+    # --- models ---------------------------------------------------------------------------
+    def spawn_model(self, name: str, robot: RobotModel, pose: SpawnPose = (0, 0, 0, 0, 0, 0),
+                    reference_frame: str = "") -> List[str]:
+        """Build ``robot`` as model ``name`` with its model frame at ``pose`` relative to
+        ``reference_frame`` (see world_control); return warnings.
+
+        Raises ModelError for a bad name or model, WorldError for a bad pose or frame; the
+        world is left as it was.
         """
         if not name:
             raise ModelError("model name is empty")
+        if SCOPE in name:
+            raise ModelError(f"model name '{name}' must not contain '{SCOPE}'")
         if name in self.models:
             raise ModelError(f"a model named '{name}' already exists")
-        robot = parse_urdf(urdf)
-        model = build_model(self.physics, robot, tuple(pose))
+        model = build_model(self.physics, robot, self._spawn_pose(pose, reference_frame))
         model.name = name
         warnings = list(robot.warnings)
         try:
@@ -76,21 +120,122 @@ class Simulation:
             model.remove()
             raise ModelError(f"model '{name}': {error}") from None
         self.models[name] = model
+        self._spawned[name] = _Spawned.of(model)
         for plugin in robot.plugins:
             if plugin.filename != KOBUKI_PLUGIN:
                 warnings.append(f"plugin {plugin.filename} ({plugin.name}) is not supported: ignored")
         return warnings
 
+    def _spawn_pose(self, pose: SpawnPose, reference_frame: str) -> Pose6:
+        """(x, y, z, roll, pitch, yaw) in the world for build_model."""
+        size = len(pose) if isinstance(pose, (tuple, list)) else 0
+        if size == 6:
+            x, y, z, roll, pitch, yaw = vector(pose, 6, "pose")
+            if reference_frame in WORLD_FRAMES:
+                return (x, y, z, roll, pitch, yaw)
+            qw, qx, qy, qz = quat_from_rpy(roll, pitch, yaw)
+            given: Tuple[Sequence[float], Sequence[float]] = ((x, y, z), (qx, qy, qz, qw))
+        elif size == 2:
+            given = (pose[0], pose[1])  # type: ignore[assignment]
+        else:
+            raise WorldError(f"pose must be (x, y, z, roll, pitch, yaw) or (position, quaternion), "
+                             f"got {pose!r}")
+        (x, y, z), (qx, qy, qz, qw) = self.to_world(reference_frame, *given)
+        roll, pitch, yaw = _rpy((qw, qx, qy, qz))
+        return (x, y, z, roll, pitch, yaw)
+
+    def spawn_urdf(self, name: str, urdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0),
+                   reference_frame: str = "") -> List[str]:
+        """Parse a URDF and ``spawn_model`` it (ModelError if it is bad)."""
+        return self.spawn_model(name, parse_urdf(urdf), pose, reference_frame)
+
+    def spawn_sdf(self, name: str, sdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0),
+                  reference_frame: str = "") -> List[str]:
+        """Parse an SDF <model> and ``spawn_model`` it; its own <pose> is not applied."""
+        return self.spawn_model(name, parse_sdf_model(sdf), pose, reference_frame)
+
+    def load_world(self, world: World) -> List[str]:
+        """Take the world's physics and pacing, spawn its inline models; return warnings (one
+        per <include> other than ground_plane and sun, which cannot be resolved).
+
+        WorldError if models exist already, ModelError for bad physics or models; the world
+        is left as it was.
+        """
+        if self.models:
+            raise WorldError(f"load_world needs an empty world, but models {list(self.models)} exist")
+        params = world.physics.apply(self.physics.params)
+        sdf = world.physics
+        rate = self.max_update_rate
+        if sdf.real_time_update_rate is not None:
+            rate = update_rate(sdf.real_time_update_rate, "world <real_time_update_rate>")
+        elif sdf.real_time_factor is not None:
+            rate = update_rate(sdf.real_time_factor, "world <real_time_factor>") / params.time_step
+        old_params, old_rate = self.physics.params, self.max_update_rate
+        self.physics.set_params(params)
+        self.max_update_rate = rate
+        warnings = list(world.warnings)
+        try:
+            for entry in world.models:
+                warnings.extend(f"model '{entry.name}': {warning}" for warning in
+                                self.spawn_model(entry.name, entry.model, entry.spawn_pose))
+        except Exception:
+            for name in list(self.models):
+                self.delete(name)
+            self.physics.set_params(old_params)
+            self.max_update_rate = old_rate
+            raise
+        for include in world.includes:
+            named = f" (model '{include.name}')" if include.name else ""
+            warnings.append(f"cannot resolve {include.uri}{named}: not spawned")
+        warnings.extend(f"world plugin {plugin.filename} ({plugin.name}) is not supported: ignored"
+                        for plugin in world.plugins)
+        return warnings
+
     def delete(self, name: str) -> None:
-        """Remove model `name`; KeyError if there is none."""
-        model = self.models.pop(name)
+        """Remove model ``name`` and the loads on it; WorldError if there is none."""
+        model = self._model(name)
+        del self.models[name]
+        del self._spawned[name]
         self.robots.pop(name, None)
+        self.loads = [load for load in self.loads if load.model != name]
         model.remove()
 
+    # --- time ------------------------------------------------------------------------------
     def step(self) -> None:
-        """One physics step with every drive's motors set for it."""
+        """One physics step with every drive's motors and every due load set for it."""
         now = self.physics.sim_time
         dt = self.physics.time_step
         for robot in self.robots.values():
             robot.drive.update(now, dt)
+        if self.loads:
+            self.apply_loads()
         self.physics.step()
+
+    def reset_world(self) -> None:
+        """Gazebo's reset_world: every model back at its spawn pose and joint positions, at
+        rest; loads cleared; drives stopped and their odometry reset. Sim time goes on."""
+        self.loads = []
+        for name, model in self.models.items():
+            spawned = self._spawned[name]
+            if model.robot.static:
+                model.set_transform(spawned.pose)
+            for link, pose in spawned.link_poses.items():
+                frame = model.links[link]
+                body = frame.body
+                assert body is not None  # only links with a body are recorded
+                position, quaternion = compose(pose, inverse(frame.offset))
+                body.setPosition(position)
+                body.setQuaternion(quaternion)
+                body.setLinearVel((0.0, 0.0, 0.0))
+                body.setAngularVel((0.0, 0.0, 0.0))
+            for joint, angle in spawned.joint_positions.items():
+                model.joints[joint].resync(angle)
+        now = self.sim_time
+        for robot in self.robots.values():
+            robot.drive.stop()
+            robot.reset_odometry(now)
+
+    def reset_simulation(self) -> None:
+        """Gazebo's reset_simulation: ``reset_world`` with sim time back at 0."""
+        self.physics.reset_time()
+        self.reset_world()

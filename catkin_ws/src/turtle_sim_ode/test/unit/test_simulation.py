@@ -5,6 +5,7 @@ import pytest
 
 from turtle_sim_ode.simulation import Simulation
 from turtle_sim_ode.urdf_model import ModelError
+from turtle_sim_ode.world_control import WorldError
 
 from conftest import TURTLEBOT_URDF
 
@@ -23,7 +24,7 @@ def test_spawn_and_delete():
     assert "box" not in sim.robots
     sim.delete("box")
     assert set(sim.models) == {"mobile_base"}
-    with pytest.raises(KeyError):
+    with pytest.raises(WorldError, match="model 'box' does not exist"):
         sim.delete("box")
 
 

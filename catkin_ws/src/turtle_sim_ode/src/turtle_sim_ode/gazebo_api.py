@@ -1,0 +1,324 @@
+"""Gazebo classic's ROS API (gazebo_ros, Noetic) on a Simulation: the /gazebo/* services and topics with
+gazebo_msgs types, so code written for Gazebo runs unchanged.
+
+Logical failures answer success: false with a status_message, as gazebo_ros does; the service call itself
+succeeds. Unlike gazebo_ros, spawning never waits on sim time (Gazebo's spawn hangs while paused or at /clock 0).
+"""
+from __future__ import annotations
+
+import re
+import threading
+from typing import Callable, Sequence, Tuple
+
+import rospy
+from gazebo_msgs import srv as gz
+from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEJointProperties, ODEPhysics
+from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
+from std_srvs.srv import Empty, EmptyResponse
+
+from .simulation import Simulation, WorldError
+from .urdf_model import ModelError
+
+Vec3 = Tuple[float, float, float]
+State = Tuple[Vec3, Tuple[float, float, float, float], Vec3, Vec3]
+
+
+def xyz(vector) -> Vec3:
+    return (vector.x, vector.y, vector.z)
+
+
+def quaternion_of(pose: Pose) -> Tuple[float, float, float, float]:
+    q = pose.orientation
+    return (q.x, q.y, q.z, q.w)
+
+
+def pose_msg(position: Sequence[float], quaternion: Sequence[float]) -> Pose:
+    return Pose(Point(*position), Quaternion(*quaternion))
+
+
+def twist_msg(linear: Sequence[float], angular: Sequence[float]) -> Twist:
+    return Twist(Vector3(*linear), Vector3(*angular))
+
+
+_FIRST_ELEMENT = re.compile(r"<([A-Za-z_][\w.-]*)")
+_PROLOG = re.compile(r"<\?.*?\?>|<!--.*?-->", re.S)
+
+
+def _detect_format(xml: str) -> str:
+    """'urdf' or 'sdf' from the root element: either spawn service takes either, like gazebo_ros's spawn_model."""
+    match = _FIRST_ELEMENT.search(_PROLOG.sub("", xml))
+    root = match.group(1) if match else ""
+    return {"robot": "urdf", "sdf": "sdf", "model": "sdf"}.get(root, "unknown")
+
+
+class GazeboApi:
+    """Registers the /gazebo services and topics of the node it is given (a node named `gazebo`)."""
+
+    def __init__(self, sim: Simulation, lock: threading.Lock, on_spawn: Callable[[str, str], None],
+                 on_delete: Callable[[str], None], pause: Callable[[bool], None], is_paused: Callable[[], bool],
+                 states_rate: float) -> None:
+        self._sim = sim
+        self._lock = lock
+        self._on_spawn = on_spawn
+        self._on_delete = on_delete
+        self._pause = pause
+        self._is_paused = is_paused
+        self._request_count = 0
+        services = [
+            ("spawn_urdf_model", gz.SpawnModel, self._spawn),
+            ("spawn_sdf_model", gz.SpawnModel, self._spawn),
+            ("delete_model", gz.DeleteModel, self._delete_model),
+            ("get_model_state", gz.GetModelState, self._get_model_state),
+            ("set_model_state", gz.SetModelState, self._set_model_state),
+            ("get_model_properties", gz.GetModelProperties, self._get_model_properties),
+            ("get_world_properties", gz.GetWorldProperties, self._get_world_properties),
+            ("get_link_state", gz.GetLinkState, self._get_link_state),
+            ("set_link_state", gz.SetLinkState, self._set_link_state),
+            ("get_link_properties", gz.GetLinkProperties, self._get_link_properties),
+            ("set_link_properties", gz.SetLinkProperties, self._set_link_properties),
+            ("get_joint_properties", gz.GetJointProperties, self._get_joint_properties),
+            ("set_joint_properties", gz.SetJointProperties, self._set_joint_properties),
+            ("get_physics_properties", gz.GetPhysicsProperties, self._get_physics_properties),
+            ("set_physics_properties", gz.SetPhysicsProperties, self._set_physics_properties),
+            ("set_model_configuration", gz.SetModelConfiguration, self._set_model_configuration),
+            ("apply_body_wrench", gz.ApplyBodyWrench, self._apply_body_wrench),
+            ("clear_body_wrenches", gz.BodyRequest, self._clear_body_wrenches),
+            ("apply_joint_effort", gz.ApplyJointEffort, self._apply_joint_effort),
+            ("clear_joint_forces", gz.JointRequest, self._clear_joint_forces),
+            ("delete_light", gz.DeleteLight, self._no_lights),
+            ("get_light_properties", gz.GetLightProperties, self._no_lights),
+            ("set_light_properties", gz.SetLightProperties, self._no_lights),
+        ]
+        self._services = [rospy.Service("~" + name, srv_type, self._answer(name, srv_type, handler))
+                          for name, srv_type, handler in services]
+        self._services += [
+            rospy.Service("~pause_physics", Empty, lambda _: self._empty(lambda: self._pause(True))),
+            rospy.Service("~unpause_physics", Empty, lambda _: self._empty(lambda: self._pause(False))),
+            rospy.Service("~reset_world", Empty, lambda _: self._empty(self._reset_world)),
+            rospy.Service("~reset_simulation", Empty, lambda _: self._empty(self._reset_simulation)),
+        ]
+        self._model_states_pub = rospy.Publisher("~model_states", ModelStates, queue_size=1)
+        self._link_states_pub = rospy.Publisher("~link_states", LinkStates, queue_size=1)
+        self._subscribers = [
+            rospy.Subscriber("~set_model_state", ModelState, self._on_set_model_state, queue_size=10),
+            rospy.Subscriber("~set_link_state", LinkState, self._on_set_link_state, queue_size=10),
+        ]
+        self.states_period = 1.0 / states_rate
+        self._next_states_time = 0.0
+
+    # --- plumbing -------------------------------------------------------------------------------------------
+    def _answer(self, name: str, srv_type, handler):
+        """Wrap a handler: it fills the response under the world lock; a logical error becomes
+        success: false with the message, logged once as a warning."""
+        response_class = srv_type._response_class
+
+        def serve(request):
+            response = response_class()
+            # BodyRequest and JointRequest have empty responses: their failures can only be logged.
+            reports = hasattr(response, "success")
+            try:
+                with self._lock:
+                    handler(request, response)
+                if reports:
+                    response.success = True
+            except (WorldError, ModelError, ValueError) as error:
+                rospy.logwarn("/gazebo/%s: %s", name, error)
+                if reports:
+                    response.success = False
+                    response.status_message = "%s: %s" % (name, error)
+            return response
+
+        return serve
+
+    def _empty(self, action: Callable[[], None]) -> EmptyResponse:
+        with self._lock:
+            action()
+        return EmptyResponse()
+
+    @staticmethod
+    def _no_lights(request, response) -> None:
+        raise WorldError("light '%s' does not exist: the simulator has no lights (it does not render)"
+                         % request.light_name)
+
+    # --- models ---------------------------------------------------------------------------------------------
+    def _spawn(self, request, response) -> None:
+        name = request.model_name
+        xml_format = _detect_format(request.model_xml)
+        if xml_format == "unknown":
+            raise WorldError("model_xml of '%s' is neither URDF (<robot>) nor SDF (<sdf> or <model>)" % name)
+        initial_pose = (xyz(request.initial_pose.position), quaternion_of(request.initial_pose))
+        spawn = self._sim.spawn_urdf if xml_format == "urdf" else self._sim.spawn_sdf
+        warnings = spawn(name, request.model_xml, initial_pose, request.reference_frame)
+        self._on_spawn(name, request.robot_namespace)
+        response.status_message = "SpawnModel: Successfully spawned entity" + (
+            " (warnings: %s)" % "; ".join(warnings) if warnings else "")
+        for warning in warnings:
+            rospy.logwarn("spawn %s: %s", name, warning)
+        rospy.loginfo("spawned model [%s]", name)
+
+    def _delete_model(self, request, response) -> None:
+        self._sim.delete(request.model_name)
+        self._on_delete(request.model_name)
+        response.status_message = "DeleteModel: successfully deleted model"
+
+    def _get_model_state(self, request, response) -> None:
+        position, quaternion, linear, angular = self._sim.get_model_state(request.model_name,
+                                                                          request.relative_entity_name)
+        self._request_count += 1
+        response.header.seq = self._request_count
+        response.header.stamp = rospy.Time.from_sec(self._sim.sim_time)
+        response.header.frame_id = request.relative_entity_name
+        response.pose = pose_msg(position, quaternion)
+        response.twist = twist_msg(linear, angular)
+        response.status_message = "GetModelState: got properties"
+
+    def _set_model_state(self, request, response) -> None:
+        self._apply_model_state(request.model_state)
+        response.status_message = "SetModelState: set model state done"
+
+    def _apply_model_state(self, state: ModelState) -> None:
+        self._sim.set_model_state(state.model_name, xyz(state.pose.position), quaternion_of(state.pose),
+                                  xyz(state.twist.linear), xyz(state.twist.angular), state.reference_frame)
+
+    def _on_set_model_state(self, state: ModelState) -> None:
+        try:
+            with self._lock:
+                self._apply_model_state(state)
+        except (WorldError, ValueError) as error:
+            rospy.logwarn_throttle(5.0, "/gazebo/set_model_state: %s" % error)
+
+    def _get_model_properties(self, request, response) -> None:
+        for field, value in self._sim.model_properties(request.model_name).items():
+            setattr(response, field, value)
+        response.status_message = "GetModelProperties: got properties"
+
+    def _get_world_properties(self, _request, response) -> None:
+        for field, value in self._sim.world_properties().items():
+            setattr(response, field, value)
+        response.status_message = "GetWorldProperties: got properties"
+
+    # --- links ----------------------------------------------------------------------------------------------
+    def _get_link_state(self, request, response) -> None:
+        position, quaternion, linear, angular = self._sim.get_link_state(request.link_name, request.reference_frame)
+        response.link_state = LinkState(request.link_name, pose_msg(position, quaternion),
+                                        twist_msg(linear, angular), request.reference_frame)
+        response.status_message = "GetLinkState: got state"
+
+    def _set_link_state(self, request, response) -> None:
+        self._apply_link_state(request.link_state)
+        response.status_message = "SetLinkState: success"
+
+    def _apply_link_state(self, state: LinkState) -> None:
+        self._sim.set_link_state(state.link_name, xyz(state.pose.position), quaternion_of(state.pose),
+                                 xyz(state.twist.linear), xyz(state.twist.angular), state.reference_frame)
+
+    def _on_set_link_state(self, state: LinkState) -> None:
+        try:
+            with self._lock:
+                self._apply_link_state(state)
+        except (WorldError, ValueError) as error:
+            rospy.logwarn_throttle(5.0, "/gazebo/set_link_state: %s" % error)
+
+    def _get_link_properties(self, request, response) -> None:
+        properties = self._sim.link_properties(request.link_name)
+        response.com = pose_msg(properties.pop("com_position"), properties.pop("com_orientation"))
+        for field, value in properties.items():
+            setattr(response, field, value)
+        response.status_message = "GetLinkProperties: got properties"
+
+    def _set_link_properties(self, request, response) -> None:
+        self._sim.set_link_properties(request.link_name, xyz(request.com.position), quaternion_of(request.com),
+                                      request.gravity_mode, request.mass,
+                                      (request.ixx, request.ixy, request.ixz, request.iyy, request.iyz, request.izz))
+        response.status_message = "SetLinkProperties: properties set"
+
+    # --- joints ---------------------------------------------------------------------------------------------
+    def _get_joint_properties(self, request, response) -> None:
+        for field, value in self._sim.joint_properties(request.joint_name).items():
+            setattr(response, field, value)
+        response.status_message = "GetJointProperties: got properties"
+
+    def _set_joint_properties(self, request, response) -> None:
+        config: ODEJointProperties = request.ode_joint_config
+        values = {field: list(getattr(config, field))[0] for field in config.__slots__ if getattr(config, field)}
+        self._sim.set_joint_properties(request.joint_name, **values)
+        response.status_message = "SetJointProperties: properties set"
+
+    def _set_model_configuration(self, request, response) -> None:
+        if len(request.joint_names) != len(request.joint_positions):
+            raise WorldError("%d joint names but %d positions" % (len(request.joint_names),
+                                                                  len(request.joint_positions)))
+        self._sim.set_model_configuration(request.model_name, list(request.joint_names),
+                                          list(request.joint_positions))
+        response.status_message = "SetModelConfiguration: success"
+
+    # --- forces ---------------------------------------------------------------------------------------------
+    def _apply_body_wrench(self, request, response) -> None:
+        self._sim.apply_body_wrench(request.body_name, request.reference_frame, xyz(request.reference_point),
+                                    xyz(request.wrench.force), xyz(request.wrench.torque),
+                                    request.start_time.to_sec(), request.duration.to_sec())
+        response.status_message = "ApplyBodyWrench: wrench applied"
+
+    def _clear_body_wrenches(self, request, response) -> None:
+        self._sim.clear_body_wrenches(request.body_name)
+
+    def _apply_joint_effort(self, request, response) -> None:
+        self._sim.apply_joint_effort(request.joint_name, request.effort, request.start_time.to_sec(),
+                                     request.duration.to_sec())
+        response.status_message = "ApplyJointEffort: effort set"
+
+    def _clear_joint_forces(self, request, response) -> None:
+        self._sim.clear_joint_forces(request.joint_name)
+
+    # --- physics --------------------------------------------------------------------------------------------
+    def _get_physics_properties(self, _request, response) -> None:
+        properties = self._sim.physics_properties()
+        response.time_step = properties["time_step"]
+        response.max_update_rate = properties["max_update_rate"]
+        response.gravity = Vector3(*properties["gravity"])
+        response.ode_config = ODEPhysics(**properties["ode_config"])
+        response.pause = self._is_paused()
+        response.status_message = "GetPhysicsProperties: got properties"
+
+    def _set_physics_properties(self, request, response) -> None:
+        ode = request.ode_config
+        warnings = self._sim.set_physics_properties(
+            time_step=request.time_step, max_update_rate=request.max_update_rate, gravity=xyz(request.gravity),
+            iterations=ode.sor_pgs_iters, erp=ode.erp, cfm=ode.cfm, contact_surface_layer=ode.contact_surface_layer,
+            contact_max_correcting_vel=ode.contact_max_correcting_vel, max_contacts=ode.max_contacts,
+            auto_disable_bodies=ode.auto_disable_bodies, sor_pgs_precon_iters=ode.sor_pgs_precon_iters,
+            sor_pgs_w=ode.sor_pgs_w, sor_pgs_rms_error_tol=ode.sor_pgs_rms_error_tol)
+        response.status_message = "SetPhysicsProperties: physics set" + (
+            " (warnings: %s)" % "; ".join(warnings) if warnings else "")
+
+    def _reset_world(self) -> None:
+        self._sim.reset_world()
+
+    def _reset_simulation(self) -> None:
+        self._sim.reset_simulation()
+        self._next_states_time = 0.0
+
+    # --- state topics ---------------------------------------------------------------------------------------
+    def publish_states(self, now: float) -> None:
+        """Publish model_states and link_states if someone listens and they are due (call from the sim loop)."""
+        if now < self._next_states_time:
+            return
+        self._next_states_time = now + self.states_period
+        if self._model_states_pub.get_num_connections():
+            states = ModelStates()
+            for name in self._sim.models:
+                position, quaternion, linear, angular = self._sim.get_model_state(name, "")
+                states.name.append(name)
+                states.pose.append(pose_msg(position, quaternion))
+                states.twist.append(twist_msg(linear, angular))
+            self._model_states_pub.publish(states)
+        if self._link_states_pub.get_num_connections():
+            states = LinkStates()
+            for name, model in self._sim.models.items():
+                for link in model.links:
+                    scoped = "%s::%s" % (name, link)
+                    position, quaternion, linear, angular = self._sim.get_link_state(scoped, "")
+                    states.name.append(scoped)
+                    states.pose.append(pose_msg(position, quaternion))
+                    states.twist.append(twist_msg(linear, angular))
+            self._link_states_pub.publish(states)
