@@ -14,8 +14,8 @@
 # Environment: CONTAINER_ENGINE=docker|podman|buildah (skip detection), CHECK_IMAGE (tag, default
 # turtle_sim_ode:check), CHECK_CACHE_DIR, DEBIAN_MIRROR.
 set -euo pipefail
-cd "$(dirname "$0")/.."
-repo=$(pwd)
+script="$(cd "$(dirname "$0")" && pwd)/$(basename "$0")"
+cd "$(dirname "$script")/.."
 export DEBIAN_FRONTEND=noninteractive
 
 image=${CHECK_IMAGE:-turtle_sim_ode:check}
@@ -59,13 +59,13 @@ case "$engine" in docker | podman | buildah) ;; *) echo "CONTAINER_ENGINE: docke
 
 if [ "$engine" = buildah ] && [ "$(id -u)" -ne 0 ]; then
   log "buildah runs as root here (chroot isolation): re-running with sudo"
-  exec sudo --preserve-env=CONTAINER_ENGINE,CHECK_IMAGE,CHECK_CACHE_DIR,DEBIAN_MIRROR "$0" "$@"
+  exec sudo --preserve-env=CONTAINER_ENGINE,CHECK_IMAGE,CHECK_CACHE_DIR,DEBIAN_MIRROR "$script" "$@"
 fi
 
 # --- base image (podman, buildah): debootstrap, cached --------------------------------------------------------------
 if [ "$(id -u)" -eq 0 ]; then cache_dir=${CHECK_CACHE_DIR:-/var/cache/turtle_sim_ode}; else
   cache_dir=${CHECK_CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/turtle_sim_ode}; fi
-arch=$(dpkg --print-architecture)
+arch=$(dpkg --print-architecture 2> /dev/null || uname -m)
 rootfs_tarball="$cache_dir/debian-bookworm-minbase-$arch.tar"
 work_dir=""
 container=""
@@ -73,14 +73,14 @@ results=""
 
 unmount_below() {  # debootstrap may leave /proc or /sys mounted in its target: unmount them before removing it
   local mount
-  for mount in $(findmnt -rn -o TARGET | grep "^$1/" | sort -r); do umount -l "$mount" || true; done
+  for mount in $(findmnt -rn -o TARGET | grep "^$1/" | sort -r); do as_root umount -l "$mount" || true; done
 }
 
 cleanup() {
   if [ -n "$container" ]; then buildah rm "$container" > /dev/null 2>&1 || true; fi
   if [ -n "$work_dir" ] && [ -d "$work_dir" ]; then
     unmount_below "$work_dir"
-    rm -rf --one-file-system "$work_dir"
+    as_root rm -rf --one-file-system "$work_dir"
   fi
   if [ -n "$results" ]; then rm -rf "$results" 2> /dev/null || true; fi
 }
@@ -121,23 +121,28 @@ make_rootfs_tarball() {
   log "debootstrap --variant=minbase bookworm from $mirror"
   mkdir -p "$cache_dir"
   work_dir=$(mktemp -d /var/tmp/check_container.XXXXXX)
-  debootstrap --variant=minbase bookworm "$work_dir/rootfs" "$mirror"
+  as_root debootstrap --variant=minbase bookworm "$work_dir/rootfs" "$mirror"
+  # The image's apt sources: the same mirror as this machine, with bookworm-updates and (when this machine has one)
+  # the security archive, like the debian:bookworm image of a registry.
   {
     echo "deb $mirror bookworm main"
     echo "deb $mirror bookworm-updates main"
     if [ -n "$security" ]; then echo "deb $security bookworm-security main"; fi
-  } > "$work_dir/rootfs/etc/apt/sources.list"
-  rm -rf "$work_dir"/rootfs/var/cache/apt/archives/*.deb "$work_dir"/rootfs/var/lib/apt/lists/*
+  } | as_root tee "$work_dir/rootfs/etc/apt/sources.list" > /dev/null
+  as_root find "$work_dir/rootfs/var/cache/apt/archives" "$work_dir/rootfs/var/lib/apt/lists" -maxdepth 1 -type f \
+    -delete
   unmount_below "$work_dir"
-  tar --numeric-owner -C "$work_dir/rootfs" -cf "$rootfs_tarball.tmp" .
+  as_root tar --numeric-owner -C "$work_dir/rootfs" -cf "$rootfs_tarball.tmp" .
+  as_root chown "$(id -u):$(id -g)" "$rootfs_tarball.tmp"
   mv "$rootfs_tarball.tmp" "$rootfs_tarball"
-  rm -rf --one-file-system "$work_dir"
+  unmount_below "$work_dir"
+  as_root rm -rf --one-file-system "$work_dir"
   work_dir=""
 }
 
 ensure_base_image() {  # ensure_base_image podman|buildah
   local tool=$1 ctr
-  if "$tool" image exists "$base_image" 2> /dev/null \
+  if { [ "$tool" = podman ] && podman image exists "$base_image"; } \
      || { [ "$tool" = buildah ] && buildah inspect --type image "$base_image" > /dev/null 2>&1; }; then
     log "$tool: base image $base_image present"
     return 0
@@ -161,7 +166,7 @@ if [ "$engine" = podman ]; then
     log "podman cannot run containers here: using buildah"
     engine=buildah
     if [ "$(id -u)" -ne 0 ]; then
-      exec sudo --preserve-env=CHECK_IMAGE,CHECK_CACHE_DIR,DEBIAN_MIRROR env CONTAINER_ENGINE=buildah "$0" "$@"
+      exec sudo --preserve-env=CHECK_IMAGE,CHECK_CACHE_DIR,DEBIAN_MIRROR env CONTAINER_ENGINE=buildah "$script" "$@"
     fi
   fi
 fi
@@ -173,12 +178,24 @@ log "engine $engine"
 phase_done "base image"
 
 # --- build ----------------------------------------------------------------------------------------------------------
+image_id() {
+  case "$engine" in
+    buildah) buildah inspect --type image --format '{{.FromImageID}}' "$1" 2> /dev/null || true ;;
+    *) "$engine" image inspect --format '{{.Id}}' "$1" 2> /dev/null || true ;;
+  esac
+}
+previous_image=$(image_id "$image")
 build_args=(-f docker/Dockerfile -t "$image" --build-arg BASE=debian:bookworm)
 case "$engine" in
   docker) docker build "${build_args[@]}" . ;;
-  podman) podman build --layers --pull=never "${build_args[@]}" . ;;
-  buildah) buildah bud --isolation chroot --layers --pull=never "${build_args[@]}" . ;;
+  podman) podman build --format docker --layers --force-rm --pull=never "${build_args[@]}" . ;;
+  buildah) buildah bud --format docker --isolation chroot --layers --force-rm --pull=never "${build_args[@]}" . ;;
 esac
+# The image of the previous run, now untagged: removing it frees the layers only it used (its cached parents that
+# the new image shares stay), so that repeated runs do not fill the disk.
+if [ -n "$previous_image" ] && [ "$previous_image" != "$(image_id "$image")" ]; then
+  "$engine" rmi "$previous_image" > /dev/null 2>&1 || true
+fi
 phase_done "image build"
 
 # --- tests inside the image -----------------------------------------------------------------------------------------
@@ -188,7 +205,7 @@ chmod 0777 "$results"
 # Runs in the image, in /workspace, after the entrypoint's ROS setup. Results go to /results as JUnit XML.
 read -r -d '' inner_script << 'EOF' || true
 set -u
-cd /workspace
+cd /workspace || exit 1
 export HOME=${HOME:-$(getent passwd "$(id -u)" | cut -d: -f6)}
 status=0
 mkdir -p /results/rostest /results/pytest

@@ -25,10 +25,13 @@ apt_install() {
   $SUDO apt-get install -y -q --no-install-recommends "$@"
 }
 
-# The resolver itself needs the system Python (a minimal image may not have it yet).
-if [ ! -x /usr/bin/python3 ]; then apt_install python3-minimal; fi
+# The resolver needs the system Python with its xml module (python3-minimal lacks it; a minimal image may have
+# no Python at all).
+if ! /usr/bin/python3 -c 'import xml.etree.ElementTree' 2>/dev/null; then apt_install python3; fi
 
-mapfile -t wanted < <(/usr/bin/python3 scripts/lib/resolve_deps.py --platform "$platform")
+# Not "< <(...)": a failing resolver must stop the script, not look like an empty list.
+resolved=$(/usr/bin/python3 scripts/lib/resolve_deps.py --platform "$platform")
+mapfile -t wanted <<< "$resolved"
 missing=()
 for package in "${wanted[@]}"; do
   status=$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null || true)
