@@ -6,15 +6,15 @@ import logging
 from dataclasses import dataclass
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-from .diff_drive import DiffDriveController, DiffDriveParams, WheelOdometry
+from .diff_drive import DiffDriveController, WheelOdometry
 from .model_builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
 from .physics import PhysicsParams, PhysicsWorld
+from .plugins import DriveConfig, ModelPlugins, read_plugins
 from .sdf_model import World, _rpy, parse_sdf_model
-from .urdf_model import GazeboPlugin, ModelError, RobotModel, parse_urdf
+from .urdf_model import ModelError, RobotModel, parse_urdf
 from .world_control import (SCOPE, WORLD_FRAMES, Load, QuatXYZW, WorldControl, WorldError, update_rate,
                             vector)
 
-KOBUKI_PLUGIN = "libgazebo_ros_kobuki.so"
 Pose6 = Tuple[float, float, float, float, float, float]
 # (x, y, z, roll, pitch, yaw), or (position, quaternion (x, y, z, w)) as in geometry_msgs/Pose.
 SpawnPose = Union[Sequence[float], Tuple[Vec3, QuatXYZW]]
@@ -23,17 +23,14 @@ log = logging.getLogger(__name__)
 
 
 class DiffDriveRobot:
-    """A model's Kobuki-style drive: velocity motors on two wheel joints and encoder odometry."""
+    """A model's differential drive plugin: velocity motors on two wheel joints and encoder odometry."""
 
-    def __init__(self, model: BuiltModel, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> None:
+    def __init__(self, model: BuiltModel, config: DriveConfig) -> None:
         self.model = model
-        self.plugin = plugin
-        self.params = DiffDriveParams.from_kobuki_plugin(plugin.params, **overrides)
-        try:
-            self.left = model.joint(plugin.params["left_wheel_joint_name"])
-            self.right = model.joint(plugin.params["right_wheel_joint_name"])
-        except KeyError as error:
-            raise ModelError(f"{plugin.filename}: {error.args[0]}") from None
+        self.config = config
+        self.params = config.params
+        self.left = model.joint(config.left_joint)
+        self.right = model.joint(config.right_joint)
         self.drive = DiffDriveController(self.left.joint, self.right.joint, self.params)
         self.odometry = WheelOdometry.from_params(self.params)
 
@@ -78,6 +75,7 @@ class Simulation(WorldControl):
         self.physics = PhysicsWorld(physics_params)
         self.models: Dict[str, BuiltModel] = {}
         self.robots: Dict[str, DiffDriveRobot] = {}
+        self.plugins: Dict[str, ModelPlugins] = {}  # what each model's plugin tags ask of the ROS side
         self.max_update_rate = (1.0 / self.physics.time_step if max_update_rate is None
                                 else update_rate(max_update_rate, "max_update_rate"))
         self.loads: List[Load] = []
@@ -112,19 +110,20 @@ class Simulation(WorldControl):
         model.name = name
         warnings = list(robot.warnings)
         try:
-            plugin = robot.plugin(KOBUKI_PLUGIN)
-            if plugin is not None:
-                self.robots[name] = DiffDriveRobot(model, plugin, self._drive_overrides)
+            plugins = read_plugins(name, robot.plugins, self._drive_overrides, list(model.joints))
+            if len(plugins.drives) > 1:
+                warnings.append(f"model has {len(plugins.drives)} drive plugins: only the first "
+                                f"({plugins.drives[0].filename}) is used")
+            if plugins.drives:
+                self.robots[name] = DiffDriveRobot(model, plugins.drives[0])
                 self.robots[name].reset_odometry(self.sim_time)
         except (ModelError, ValueError) as error:
             model.remove()
             raise ModelError(f"model '{name}': {error}") from None
         self.models[name] = model
+        self.plugins[name] = plugins
         self._spawned[name] = _Spawned.of(model)
-        for plugin in robot.plugins:
-            if plugin.filename != KOBUKI_PLUGIN:
-                warnings.append(f"plugin {plugin.filename} ({plugin.name}) is not supported: ignored")
-        return warnings
+        return warnings + plugins.warnings
 
     def _spawn_pose(self, pose: SpawnPose, reference_frame: str) -> Pose6:
         """(x, y, z, roll, pitch, yaw) in the world for build_model."""
@@ -197,6 +196,7 @@ class Simulation(WorldControl):
         del self.models[name]
         del self._spawned[name]
         self.robots.pop(name, None)
+        self.plugins.pop(name, None)
         self.loads = [load for load in self.loads if load.model != name]
         model.remove()
 

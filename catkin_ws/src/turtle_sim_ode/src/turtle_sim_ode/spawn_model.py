@@ -92,10 +92,16 @@ def main(argv: List[str]) -> int:
             rospy.sleep(0.1)  # no event announces a spawn: poll the world
     pose = Pose(Point(args.x, args.y, args.z), quaternion_from_rpy(args.R, args.P, args.Y))
     spawn = rospy.ServiceProxy(service + ("spawn_urdf_model" if args.urdf else "spawn_sdf_model"), SpawnModel)
+    spawned = []
+    if args.bond:
+        # Registered before spawning: a shutdown right after the spawn must still delete the model.
+        delete = rospy.ServiceProxy(service + "delete_model", DeleteModel)
+        rospy.on_shutdown(lambda: spawned and delete(args.model))
     result = spawn(args.model, model_xml, args.robot_namespace, pose, args.reference_frame)
     if not result.success:
         rospy.logfatal("spawn failed: %s", result.status_message)
         return 1
+    spawned.append(args.model)
     rospy.loginfo(result.status_message)
     if args.J:
         configure = rospy.ServiceProxy(service + "set_model_configuration", SetModelConfiguration)
@@ -105,6 +111,5 @@ def main(argv: List[str]) -> int:
     if args.unpause:
         rospy.ServiceProxy(service + "unpause_physics", Empty)()
     if args.bond:
-        rospy.on_shutdown(lambda: rospy.ServiceProxy(service + "delete_model", DeleteModel)(args.model))
         rospy.spin()
     return 0

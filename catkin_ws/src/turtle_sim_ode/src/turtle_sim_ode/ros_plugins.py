@@ -1,0 +1,271 @@
+"""The ROS side of the gazebo_ros plugins a model carries: drive, ground truth (p3d), joint state publisher.
+
+Each publisher keeps its own schedule in sim time; SimulatorNode calls publish_due() after every step.
+"""
+from __future__ import annotations
+
+import math
+import random
+from typing import List, Optional, Sequence, Tuple
+
+import rospy
+import tf2_ros
+from geometry_msgs.msg import Quaternion, TransformStamped, Twist
+from nav_msgs.msg import Odometry
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Empty as EmptyMsg
+
+from .model_builder import BuiltModel, quat_from_rpy, quat_multiply
+from .plugins import GroundTruthConfig, JointStatesConfig, find_body
+from .settings import SimulatorSettings
+from .simulation import DiffDriveRobot, Simulation
+
+# Diagonal covariances as the Kobuki driver reports them: x, y and yaw measured, the rest unknown.
+ODOM_POSE_COVARIANCE = [0.1, 0, 0, 0, 0, 0, 0, 0.1, 0, 0, 0, 0, 0, 0, 1e6, 0, 0, 0,
+                        0, 0, 0, 1e6, 0, 0, 0, 0, 0, 0, 1e6, 0, 0, 0, 0, 0, 0, 0.05]
+ODOM_TWIST_COVARIANCE = ODOM_POSE_COVARIANCE
+Vec3 = Tuple[float, float, float]
+
+
+def sim_stamp(seconds: float) -> rospy.Time:
+    nanoseconds = int(round(seconds * 1e9))
+    return rospy.Time(nanoseconds // 1000000000, nanoseconds % 1000000000)
+
+
+def yaw_quaternion(yaw: float) -> Quaternion:
+    return Quaternion(0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+
+
+def rotate_inverse(q: Sequence[float], v: Sequence[float]) -> Vec3:
+    """Rotate vector v by the inverse of unit quaternion q (x, y, z, w): world axes to body axes."""
+    x, y, z, w = -q[0], -q[1], -q[2], q[3]
+    vx, vy, vz = v
+    tx, ty, tz = 2 * (y * vz - z * vy), 2 * (z * vx - x * vz), 2 * (x * vy - y * vx)
+    return (vx + w * tx + y * tz - z * ty, vy + w * ty + z * tx - x * tz, vz + w * tz + x * ty - y * tx)
+
+
+def topic_prefix(namespace: str) -> str:
+    """A model's robot namespace prefixes its plugin topics, as gazebo_ros plugins do."""
+    namespace = namespace.strip("/")
+    return namespace + "/" if namespace else ""
+
+
+class Periodic:
+    """A publisher with its own rate in sim time."""
+
+    def __init__(self, period: float) -> None:
+        self._period = period
+        self._next = 0.0
+
+    def restart(self, now: float) -> None:
+        self._next = now
+
+    def publish_due(self, now: float) -> None:
+        if now >= self._next - 1e-9:
+            self._next = max(self._next + self._period, now)
+            self.publish(sim_stamp(now), now)
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        raise NotImplementedError
+
+    def close(self) -> None:
+        raise NotImplementedError
+
+
+class DriveInterface(Periodic):
+    """A drive plugin's topics: velocity commands (and reset for the Kobuki) in; odometry, tf and wheel
+    joint states out, with one stamp."""
+
+    def __init__(self, name: str, robot: DiffDriveRobot, settings: SimulatorSettings,
+                 tf_broadcaster: tf2_ros.TransformBroadcaster, sim: Simulation, namespace: str) -> None:
+        config = robot.config
+        super().__init__(1.0 / (config.update_rate or settings.publish_rate))
+        self.name = name
+        self.robot = robot
+        self._sim = sim
+        self._tf = tf_broadcaster if config.publish_tf and settings.publish_tf else None
+        self._odom_frame = config.odometry_frame or settings.odom_frame
+        self._base_frame = config.base_frame or settings.base_frame
+        self._world_odometry = config.odometry_source == "world"
+        self._reset_requested = False
+        prefix = topic_prefix(namespace or config.robot_namespace)
+        self._handles: List = [rospy.Subscriber(prefix + config.command_topic, Twist, self._on_velocity, queue_size=1)]
+        if config.reset_topic:
+            self._handles.append(rospy.Subscriber(prefix + config.reset_topic, EmptyMsg, self._on_reset, queue_size=1))
+        self._odom_pub = rospy.Publisher(prefix + config.odometry_topic, Odometry, queue_size=10)
+        self._joint_pub: Optional[rospy.Publisher] = None
+        if config.publish_joint_states:
+            self._joint_pub = rospy.Publisher(prefix + "joint_states", JointState, queue_size=10)
+        self._handles += [p for p in (self._odom_pub, self._joint_pub) if p is not None]
+        self._joint_names = [robot.left.name, robot.right.name]
+
+    def _on_velocity(self, twist: Twist) -> None:
+        if not self.robot.drive.set_command(twist.linear.x, twist.angular.z, self._sim.sim_time):
+            rospy.logwarn_throttle(5.0, "%s: velocity command ignored, not finite: linear.x [%s] angular.z [%s]"
+                                   % (self.name, twist.linear.x, twist.angular.z))
+
+    def _on_reset(self, _msg: EmptyMsg) -> None:
+        self._reset_requested = True  # applied in the simulation thread, between steps
+
+    def _odometry(self, stamp: rospy.Time, now: float) -> Odometry:
+        odom = Odometry()
+        odom.header.stamp = stamp
+        odom.header.frame_id = self._odom_frame
+        odom.child_frame_id = self._base_frame
+        if self._world_odometry:  # gazebo_ros_diff_drive's odometrySource world: the physics state
+            model = self.robot.model
+            base = self._base_frame if self._base_frame in model.links else model.root_link
+            position, quaternion = model.link_pose(base)
+            linear, angular = model.link_twist(base)
+            pose = odom.pose.pose
+            pose.position.x, pose.position.y, pose.position.z = position
+            pose.orientation = Quaternion(*quaternion)
+            twist = odom.twist.twist
+            twist.linear.x, twist.linear.y, twist.linear.z = rotate_inverse(quaternion, linear)
+            twist.angular.x, twist.angular.y, twist.angular.z = rotate_inverse(quaternion, angular)
+            return odom
+        if self._reset_requested:
+            self._reset_requested = False
+            self.robot.reset_odometry(now)
+            rospy.loginfo("%s: odometry reset", self.name)
+        else:
+            self.robot.update_odometry(now)
+        odometry = self.robot.odometry
+        odom.pose.pose.position.x = odometry.x
+        odom.pose.pose.position.y = odometry.y
+        odom.pose.pose.orientation = yaw_quaternion(odometry.yaw)
+        odom.pose.covariance = ODOM_POSE_COVARIANCE
+        odom.twist.twist.linear.x = odometry.linear
+        odom.twist.twist.angular.z = odometry.angular
+        odom.twist.covariance = ODOM_TWIST_COVARIANCE
+        return odom
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        odom = self._odometry(stamp, now)
+        self._odom_pub.publish(odom)
+        if self._tf is not None:
+            transform = TransformStamped()
+            transform.header = odom.header
+            transform.child_frame_id = odom.child_frame_id
+            position = odom.pose.pose.position
+            transform.transform.translation.x = position.x
+            transform.transform.translation.y = position.y
+            transform.transform.translation.z = position.z
+            transform.transform.rotation = odom.pose.pose.orientation
+            self._tf.sendTransform(transform)
+        if self._joint_pub is not None:
+            robot = self.robot
+            joints = JointState()
+            joints.header.stamp = stamp
+            joints.name = self._joint_names
+            joints.position = [robot.left.angle(), robot.right.angle()]
+            joints.velocity = [robot.left.rate(), robot.right.rate()]
+            self._joint_pub.publish(joints)
+
+    def close(self) -> None:
+        for handle in self._handles:
+            handle.unregister()
+
+
+class GroundTruthPublisher(Periodic):
+    """A link's true pose and velocity as nav_msgs/Odometry, published only while subscribed.
+
+    p3d (`twist_in_body` false) gives the twist in the world frame as gazebo_ros_p3d does; the simulator's own
+    ground truth gives it in the body frame, as nav_msgs/Odometry asks."""
+
+    def __init__(self, model: BuiltModel, link: str, topic: str, frame: str, rate: float, twist_in_body: bool,
+                 noise: float = 0.0, xyz_offset: Vec3 = (0.0, 0.0, 0.0), rpy_offset: Vec3 = (0.0, 0.0, 0.0)) -> None:
+        super().__init__(1.0 / rate)
+        self._model = model
+        self._link = link
+        self._frame = frame
+        self._twist_in_body = twist_in_body
+        self._noise = noise
+        self._offset = xyz_offset
+        w, x, y, z = quat_from_rpy(*rpy_offset)
+        self._rotation_offset = (w, x, y, z)
+        self._pub = rospy.Publisher(topic, Odometry, queue_size=10)
+
+    @classmethod
+    def from_p3d(cls, model: BuiltModel, link: str, config: GroundTruthConfig, namespace: str,
+                 default_rate: float) -> "GroundTruthPublisher":
+        return cls(model, link, topic_prefix(namespace or config.robot_namespace) + config.topic, config.frame,
+                   config.update_rate or default_rate, False, config.gaussian_noise, config.xyz_offset,
+                   config.rpy_offset)
+
+    def _noisy(self, values: Sequence[float]) -> Vec3:
+        if not self._noise:
+            return tuple(values)  # type: ignore[return-value]
+        return tuple(v + random.gauss(0.0, self._noise) for v in values)  # type: ignore[return-value]
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        if not self._pub.get_num_connections():
+            return
+        (px, py, pz), (w, x, y, z) = self._model.link_transform(self._link)
+        linear, angular = self._model.link_twist(self._link)
+        ow, ox, oy, oz = quat_multiply(self._rotation_offset, (w, x, y, z))
+        truth = Odometry()
+        truth.header.stamp = stamp
+        truth.header.frame_id = self._frame
+        truth.child_frame_id = self._link
+        pose = truth.pose.pose
+        pose.position.x, pose.position.y, pose.position.z = self._noisy(
+            (px + self._offset[0], py + self._offset[1], pz + self._offset[2]))
+        pose.orientation = Quaternion(ox, oy, oz, ow)
+        if self._twist_in_body:
+            linear, angular = rotate_inverse((x, y, z, w), linear), rotate_inverse((x, y, z, w), angular)
+        twist = truth.twist.twist
+        twist.linear.x, twist.linear.y, twist.linear.z = self._noisy(linear)
+        twist.angular.x, twist.angular.y, twist.angular.z = self._noisy(angular)
+        self._pub.publish(truth)
+
+    def close(self) -> None:
+        self._pub.unregister()
+
+
+class JointStatePublisher(Periodic):
+    """libgazebo_ros_joint_state_publisher.so: positions and velocities of the named joints."""
+
+    def __init__(self, model: BuiltModel, config: JointStatesConfig, namespace: str) -> None:
+        super().__init__(1.0 / config.update_rate if config.update_rate else 0.0)
+        self._handles = [model.joint(name) for name in config.joints]
+        self._names = list(config.joints)
+        self._pub = rospy.Publisher(topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState,
+                                    queue_size=10)
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        joints = JointState()
+        joints.header.stamp = stamp
+        joints.name = self._names
+        joints.position = [handle.angle() for handle in self._handles]
+        joints.velocity = [handle.rate() for handle in self._handles]
+        self._pub.publish(joints)
+
+    def close(self) -> None:
+        self._pub.unregister()
+
+
+def model_interfaces(name: str, sim: Simulation, settings: SimulatorSettings,
+                     tf_broadcaster: tf2_ros.TransformBroadcaster, namespace: str) -> List[Periodic]:
+    """Every ROS publisher and subscriber the plugins of model `name` ask for (call under the world lock)."""
+    model = sim.models[name]
+    interfaces: List[Periodic] = []
+    robot = sim.robots.get(name)
+    if robot is not None:
+        interfaces.append(DriveInterface(name, robot, settings, tf_broadcaster, sim, namespace))
+        if robot.config.filename.endswith("kobuki.so"):
+            # turtlebot_gazebo's ground-truth odometry of the base, under the node's parameters.
+            base = settings.base_frame if settings.base_frame in model.links else model.root_link
+            interfaces.append(GroundTruthPublisher(model, base, topic_prefix(namespace) + settings.ground_truth_topic,
+                                                   settings.ground_truth_frame, settings.publish_rate, True))
+    plugins = sim.plugins.get(name)
+    if plugins is not None:
+        for config in plugins.ground_truths:
+            link = find_body(list(model.links), config.body)
+            if link is None:
+                rospy.logwarn("model %s: p3d bodyName [%s] is not a link: not published", name, config.body)
+                continue
+            interfaces.append(GroundTruthPublisher.from_p3d(model, link, config, namespace, settings.publish_rate))
+        for config in plugins.joint_states:
+            interfaces.append(JointStatePublisher(model, config, namespace))
+    return interfaces

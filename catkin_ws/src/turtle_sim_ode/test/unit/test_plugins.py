@@ -1,0 +1,76 @@
+"""gazebo_ros plugin tags read with gazebo_ros's names and defaults."""
+import math
+from pathlib import Path
+
+import pytest
+
+from turtle_sim_ode.plugins import (DIFF_DRIVE, KOBUKI, P3D, find_body, read_plugins)
+from turtle_sim_ode.urdf_model import GazeboPlugin, ModelError, parse_urdf
+
+from conftest import TURTLEBOT_URDF
+
+BURGER_URDF = (Path(__file__).resolve().parents[1] / "models" / "burger.urdf").read_text()
+
+
+def test_turtlebot3_diff_drive_tags():
+    robot = parse_urdf(BURGER_URDF)
+    plugins = read_plugins("burger", robot.plugins, {}, ["wheel_left_joint", "wheel_right_joint"])
+    (drive,) = plugins.drives
+    assert drive.filename == DIFF_DRIVE
+    assert (drive.left_joint, drive.right_joint) == ("wheel_left_joint", "wheel_right_joint")
+    assert drive.params.wheel_separation == pytest.approx(0.160)
+    assert drive.params.wheel_radius == pytest.approx(0.033)
+    assert drive.params.max_wheel_torque == 10.0
+    assert drive.params.max_wheel_acceleration == pytest.approx(1 / 0.033)  # m/s^2 -> rad/s^2
+    assert (drive.command_topic, drive.odometry_topic, drive.odometry_frame, drive.base_frame) == (
+        "cmd_vel", "odom", "odom", "base_footprint")
+    assert drive.odometry_source == "world" and drive.publish_tf and drive.publish_joint_states
+    assert drive.update_rate == 30.0
+    (truth,) = plugins.ground_truths
+    assert (truth.body, truth.topic, truth.frame, truth.update_rate) == ("base_footprint", "ground_truth/burger",
+                                                                         "world", 50.0)
+
+
+def test_kobuki_topics_follow_the_model_name():
+    robot = parse_urdf(TURTLEBOT_URDF)
+    (drive,) = read_plugins("mobile_base", robot.plugins, {"cmd_timeout": 1.0},
+                            ["wheel_left_joint", "wheel_right_joint"]).drives
+    assert drive.filename == KOBUKI
+    assert drive.command_topic == "mobile_base/commands/velocity"
+    assert drive.reset_topic == "mobile_base/commands/reset_odometry"
+    assert drive.params.cmd_timeout == 1.0 and drive.odometry_source == "encoder"
+
+
+def test_defaults_of_gazebo_ros_diff_drive():
+    plugin = GazeboPlugin(DIFF_DRIVE, "drive", {})
+    (drive,) = read_plugins("m", [plugin], {}, ["left_joint", "right_joint"]).drives
+    assert drive.params.wheel_separation == 0.34 and drive.params.wheel_radius == 0.075
+    assert drive.params.cmd_timeout == 0.0 and math.isinf(drive.params.max_linear)
+    assert drive.command_topic == "cmd_vel" and drive.update_rate == 100.0
+
+
+@pytest.mark.parametrize("params, message", [
+    ({"wheelSeparation": "wide"}, "<wheelSeparation> must be a number"),
+    ({"wheelDiameter": "-1"}, "<wheelDiameter> must be a finite number >= 0"),
+    ({"publishTf": "maybe"}, "<publishTf> must be true or false"),
+    ({"odometrySource": "gps"}, "<odometrySource> must be encoder or world"),
+    ({"leftJoint": "no_such_joint"}, "no movable joint(s) ['no_such_joint']"),
+])
+def test_bad_tags_are_named(params, message):
+    plugin = GazeboPlugin(DIFF_DRIVE, "drive", params)
+    with pytest.raises(ModelError) as error:
+        read_plugins("m", [plugin], {}, ["left_joint", "right_joint"])
+    assert message in str(error.value)
+
+
+def test_p3d_needs_a_body_and_unknown_plugins_are_named():
+    with pytest.raises(ModelError, match="bodyName"):
+        read_plugins("m", [GazeboPlugin(P3D, "truth", {})], {}, [])
+    plugins = read_plugins("m", [GazeboPlugin("libgazebo_ros_camera.so", "cam", {})], {}, [])
+    assert plugins.warnings == ["plugin libgazebo_ros_camera.so (cam) is not supported: ignored"]
+
+
+def test_find_body_accepts_scoped_names():
+    assert find_body(["base_link"], "robot::base_link") == "base_link"
+    assert find_body(["base_link"], "base_link") == "base_link"
+    assert find_body(["base_link"], "wheel") is None
