@@ -53,8 +53,10 @@ def main():
     _, keys = workspace_keys(args.src)
     unknown = sorted(k for k in keys if k not in table)
     if unknown:
-        sys.exit("resolve_deps: no system package known for rosdep key(s) %s: add them to %s"
-                 % (", ".join(unknown), os.path.join(HERE, "rosdeps.tsv")))
+        sys.exit(
+            "resolve_deps: no system package known for rosdep key(s) %s: add them to %s"
+            % (", ".join(unknown), os.path.join(HERE, "rosdeps.tsv"))
+        )
     keys.update(k for k in table if k.startswith("tool:"))
     packages = sorted({p for k in keys for p in table[k][args.platform]})
     print("\n".join(packages))

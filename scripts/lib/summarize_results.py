@@ -30,8 +30,11 @@ def count_cases(path):
         else:
             passed += 1
     # rostest writes a suite-level failure with no test case when the launch itself failed.
-    suite_errors = sum(int(s.get("errors", 0)) + int(s.get("failures", 0)) for s in root.iter("testsuite")
-                       if not list(s.iter("testcase")))
+    suite_errors = sum(
+        int(s.get("errors", 0)) + int(s.get("failures", 0))
+        for s in root.iter("testsuite")
+        if not list(s.iter("testcase"))
+    )
     if suite_errors:
         failed += suite_errors
         failures.append("%s: suite failed without test cases" % os.path.relpath(path))

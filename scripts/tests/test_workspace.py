@@ -1,5 +1,6 @@
 """Workspace-wide checks: lint, the catkin-tools build, formatting, and the dependency list."""
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -12,8 +13,7 @@ PACKAGES = sorted(d for d in os.listdir(SRC) if os.path.isfile(os.path.join(SRC,
 
 
 def run(command, **kwargs):
-    return subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                          **kwargs)
+    return subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True, **kwargs)
 
 
 def tracked_files(*suffixes):
@@ -33,8 +33,20 @@ def test_builds_with_catkin_tools():
     os.makedirs(workspace, exist_ok=True)
     if not os.path.islink(os.path.join(workspace, "src")):
         os.symlink(SRC, os.path.join(workspace, "src"))
-    result = run(["catkin", "build", "--workspace", workspace, "--no-status", "--no-notify", "--summarize",
-                  "--cmake-args", "-DCMAKE_BUILD_TYPE=Release", "-DPYTHON_EXECUTABLE=/usr/bin/python3"])
+    result = run(
+        [
+            "catkin",
+            "build",
+            "--workspace",
+            workspace,
+            "--no-status",
+            "--no-notify",
+            "--summarize",
+            "--cmake-args",
+            "-DCMAKE_BUILD_TYPE=Release",
+            "-DPYTHON_EXECUTABLE=/usr/bin/python3",
+        ]
+    )
     assert result.returncode == 0, result.stdout[-5000:]
 
 
@@ -42,6 +54,18 @@ def test_cpp_formatted():
     files = tracked_files(".cpp", ".h")
     assert files
     result = run(["clang-format", "--dry-run", "--Werror", "--style=file"] + files, cwd=REPO)
+    assert result.returncode == 0, result.stdout[-5000:]
+
+
+def test_python_formatted():
+    """black with the repository's pyproject.toml; older blacks (Ubuntu 20.04 has 19.10) format differently."""
+    version = run(["black", "--version"]).stdout if shutil.which("black") else ""
+    match = re.search(r"(\d+)\.\d+", version)
+    if not match or int(match.group(1)) < 23:
+        pytest.skip("needs black >= 23 (found: %s)" % (version.strip() or "none"))
+    # Python files, and the extension-less executables in nodes/
+    files = tracked_files(".py") + [f for f in tracked_files("") if os.sep + "nodes" + os.sep in f]
+    result = run(["black", "--check", "--quiet"] + files, cwd=REPO)
     assert result.returncode == 0, result.stdout[-5000:]
 
 
@@ -68,8 +92,13 @@ def test_debian_dependencies_are_installable():
     """Every Debian package name the resolver gives exists in the archive (a typo would break a fresh machine)."""
     if not shutil.which("apt-cache") or "debian" not in open("/etc/os-release").read():
         pytest.skip("only checkable on Debian")
-    packages = run([sys.executable, os.path.join(REPO, "scripts", "lib", "resolve_deps.py"), "--platform",
-                    "debian"]).stdout.split()
-    unknown = [p for p in packages if "Candidate: (none)" in run(["apt-cache", "policy", p]).stdout
-               or not run(["apt-cache", "policy", p]).stdout.strip()]
+    packages = run(
+        [sys.executable, os.path.join(REPO, "scripts", "lib", "resolve_deps.py"), "--platform", "debian"]
+    ).stdout.split()
+    unknown = [
+        p
+        for p in packages
+        if "Candidate: (none)" in run(["apt-cache", "policy", p]).stdout
+        or not run(["apt-cache", "policy", p]).stdout.strip()
+    ]
     assert not unknown, unknown

@@ -32,8 +32,11 @@ class ExpectRosout(unittest.TestCase):
         subscriber = rospy.Subscriber("/rosout", Log, on_log, queue_size=100)
         enough.wait(timeout)
         subscriber.unregister()
-        self.assertGreaterEqual(len(matches), min_count, "%s logged %d matching messages in %s s; others: %s"
-                                % (node, len(matches), timeout, others[:5]))
+        self.assertGreaterEqual(
+            len(matches),
+            min_count,
+            "%s logged %d matching messages in %s s; others: %s" % (node, len(matches), timeout, others[:5]),
+        )
 
 
 if __name__ == "__main__":

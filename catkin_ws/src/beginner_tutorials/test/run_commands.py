@@ -65,8 +65,14 @@ def run_case(test: unittest.TestCase, case: dict) -> None:
     expected_exit = case.get("exit_code", 0)
     # Nodes write into a pipe here: make them flush each line, as they would on a terminal.
     env = dict(os.environ, ROSCONSOLE_STDOUT_LINE_BUFFERED="1", PYTHONUNBUFFERED="1")
-    process = subprocess.Popen(shlex.split(case["command"]), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                               universal_newlines=True, start_new_session=True, env=env)
+    process = subprocess.Popen(
+        shlex.split(case["command"]),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        universal_newlines=True,
+        start_new_session=True,
+        env=env,
+    )
     output = CommandOutput(process)
     try:
         if expected_exit == "running":

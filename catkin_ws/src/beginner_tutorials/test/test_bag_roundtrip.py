@@ -44,8 +44,10 @@ class BagRoundTrip(unittest.TestCase):
                     all_played.set()
 
             rospy.Subscriber("replayed_chatter", String, on_message, queue_size=count)
-            player = subprocess.run(["rosbag", "play", "--wait-for-subscribers", "--quiet", bag_path,
-                                     "chatter:=replayed_chatter"], timeout=60)
+            player = subprocess.run(
+                ["rosbag", "play", "--wait-for-subscribers", "--quiet", bag_path, "chatter:=replayed_chatter"],
+                timeout=60,
+            )
             self.assertEqual(player.returncode, 0)
             all_played.wait(10.0)
             self.assertEqual(played, recorded)

@@ -30,19 +30,35 @@ def pose(x=0.0, y=0.0, z=0.0, qx=0.0, qy=0.0, qz=0.0, qw=1.0):
 class GazeboApi(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        names = {"spawn_urdf_model": gz.SpawnModel, "spawn_sdf_model": gz.SpawnModel, "delete_model": gz.DeleteModel,
-                 "get_model_state": gz.GetModelState, "set_model_state": gz.SetModelState,
-                 "get_model_properties": gz.GetModelProperties, "get_world_properties": gz.GetWorldProperties,
-                 "get_link_state": gz.GetLinkState, "set_link_state": gz.SetLinkState,
-                 "get_link_properties": gz.GetLinkProperties, "set_link_properties": gz.SetLinkProperties,
-                 "get_joint_properties": gz.GetJointProperties, "set_joint_properties": gz.SetJointProperties,
-                 "get_physics_properties": gz.GetPhysicsProperties,
-                 "set_physics_properties": gz.SetPhysicsProperties,
-                 "set_model_configuration": gz.SetModelConfiguration, "apply_body_wrench": gz.ApplyBodyWrench,
-                 "clear_body_wrenches": gz.BodyRequest, "apply_joint_effort": gz.ApplyJointEffort,
-                 "clear_joint_forces": gz.JointRequest, "delete_light": gz.DeleteLight,
-                 "get_light_properties": gz.GetLightProperties, "set_light_properties": gz.SetLightProperties,
-                 "pause_physics": Empty, "unpause_physics": Empty, "reset_world": Empty, "reset_simulation": Empty}
+        names = {
+            "spawn_urdf_model": gz.SpawnModel,
+            "spawn_sdf_model": gz.SpawnModel,
+            "delete_model": gz.DeleteModel,
+            "get_model_state": gz.GetModelState,
+            "set_model_state": gz.SetModelState,
+            "get_model_properties": gz.GetModelProperties,
+            "get_world_properties": gz.GetWorldProperties,
+            "get_link_state": gz.GetLinkState,
+            "set_link_state": gz.SetLinkState,
+            "get_link_properties": gz.GetLinkProperties,
+            "set_link_properties": gz.SetLinkProperties,
+            "get_joint_properties": gz.GetJointProperties,
+            "set_joint_properties": gz.SetJointProperties,
+            "get_physics_properties": gz.GetPhysicsProperties,
+            "set_physics_properties": gz.SetPhysicsProperties,
+            "set_model_configuration": gz.SetModelConfiguration,
+            "apply_body_wrench": gz.ApplyBodyWrench,
+            "clear_body_wrenches": gz.BodyRequest,
+            "apply_joint_effort": gz.ApplyJointEffort,
+            "clear_joint_forces": gz.JointRequest,
+            "delete_light": gz.DeleteLight,
+            "get_light_properties": gz.GetLightProperties,
+            "set_light_properties": gz.SetLightProperties,
+            "pause_physics": Empty,
+            "unpause_physics": Empty,
+            "reset_world": Empty,
+            "reset_simulation": Empty,
+        }
         for name, srv_type in names.items():
             rospy.wait_for_service("/gazebo/" + name, timeout=60)
             setattr(cls, name, staticmethod(rospy.ServiceProxy("/gazebo/" + name, srv_type)))
@@ -102,16 +118,22 @@ class GazeboApi(unittest.TestCase):
         self.refused(self.spawn("not_xml", xml="hello world"), "neither URDF")
         self.refused(self.spawn("wrong_root", xml="<html><body/></html>"), "neither URDF")
         self.refused(self.spawn("far", reference_frame="no_such_model"), "no_such_model")
-        laughs = ('<?xml version="1.0"?><!DOCTYPE r [<!ENTITY a "aaaa"><!ENTITY b "&a;&a;&a;&a;">]>'
-                  '<robot name="r">&b;</robot>')
+        laughs = (
+            '<?xml version="1.0"?><!DOCTYPE r [<!ENTITY a "aaaa"><!ENTITY b "&a;&a;&a;&a;">]>'
+            '<robot name="r">&b;</robot>'
+        )
         self.refused(self.spawn("laughs", xml=laughs))
-        external = '<?xml version="1.0"?><!DOCTYPE r [<!ENTITY x SYSTEM "file:///etc/passwd">]><robot name="r">&x;</robot>'
+        external = (
+            '<?xml version="1.0"?><!DOCTYPE r [<!ENTITY x SYSTEM "file:///etc/passwd">]><robot name="r">&x;</robot>'
+        )
         self.refused(self.spawn("external", xml=external))
         self.assertNotIn("truncated", self.get_world_properties().model_names)
 
     def test_mesh_is_a_box_with_a_warning(self):
-        mesh = self.box.replace('<box size="0.2 0.2 0.2"/></geometry></collision>',
-                                '<mesh filename="file:///etc/passwd"/></geometry></collision>')
+        mesh = self.box.replace(
+            '<box size="0.2 0.2 0.2"/></geometry></collision>',
+            '<mesh filename="file:///etc/passwd"/></geometry></collision>',
+        )
         result = self.spawned("mesh_box", xml=mesh, at=pose(2, 2, 0.1))
         self.assertIn("mesh", result.status_message)
 
@@ -149,10 +171,14 @@ class GazeboApi(unittest.TestCase):
 
     def test_quaternions_are_normalised(self):
         self.spawned("twisted_box", at=pose(-2, 4, 0.1))
-        self.assertTrue(self.set_model_state(ModelState("twisted_box", pose(-2, 4, 0.1, 0, 0, 2, 2), Twist(), "")).success)
+        self.assertTrue(
+            self.set_model_state(ModelState("twisted_box", pose(-2, 4, 0.1, 0, 0, 2, 2), Twist(), "")).success
+        )
         q = self.get_model_state("twisted_box", "").pose.orientation
-        self.assertAlmostEqual(math.sqrt(q.x ** 2 + q.y ** 2 + q.z ** 2 + q.w ** 2), 1.0, places=6)
-        self.assertTrue(self.set_model_state(ModelState("twisted_box", pose(-2, 4, 0.1, 0, 0, 0, 0), Twist(), "")).success)
+        self.assertAlmostEqual(math.sqrt(q.x**2 + q.y**2 + q.z**2 + q.w**2), 1.0, places=6)
+        self.assertTrue(
+            self.set_model_state(ModelState("twisted_box", pose(-2, 4, 0.1, 0, 0, 0, 0), Twist(), "")).success
+        )
         q = self.get_model_state("twisted_box", "").pose.orientation
         self.assertAlmostEqual(abs(q.w), 1.0, places=3)
 
@@ -167,8 +193,7 @@ class GazeboApi(unittest.TestCase):
         self.refused(self.get_model_state("mobile_base", "no_such_frame"), "no_such_frame")
         self.refused(self.set_model_state(ModelState("no_such_model", pose(), Twist(), "")), "no_such_model")
         self.refused(self.set_model_state(ModelState("mobile_base", pose(NAN, 0, 0), Twist(), "")))
-        self.refused(self.set_model_state(ModelState("mobile_base", pose(), Twist(), "no_such_frame")),
-                     "no_such_frame")
+        self.refused(self.set_model_state(ModelState("mobile_base", pose(), Twist(), "no_such_frame")), "no_such_frame")
 
     def test_set_model_state_topic(self):
         self.spawned("topic_box", at=pose(4, 0, 0.1))
@@ -209,8 +234,9 @@ class GazeboApi(unittest.TestCase):
         self.spawned("link_box", at=pose(0, -2, 0.1))
         result = self.set_link_state(LinkState("link_box::box_link", pose(0.5, -2, 0.1), Twist(), "world"))
         self.assertTrue(result.success, result.status_message)
-        self.assertAlmostEqual(self.get_link_state("link_box::box_link", "").link_state.pose.position.x, 0.5,
-                               delta=0.01)
+        self.assertAlmostEqual(
+            self.get_link_state("link_box::box_link", "").link_state.pose.position.x, 0.5, delta=0.01
+        )
         result = self.set_link_properties("link_box::box_link", pose(), True, 3.0, 0.02, 0, 0, 0.02, 0, 0.02)
         self.assertTrue(result.success, result.status_message)
         self.assertAlmostEqual(self.get_link_properties("link_box::box_link").mass, 3.0, places=6)
@@ -245,20 +271,29 @@ class GazeboApi(unittest.TestCase):
         self.assertTrue(result.success, result.status_message)
         self.assertAlmostEqual(self.get_physics_properties().gravity.z, -1.62)
         try:
-            self.refused(self.set_physics_properties(0.0, physics.max_update_rate, physics.gravity,
-                                                     physics.ode_config), "time_step")
-            self.refused(self.set_physics_properties(physics.time_step, physics.max_update_rate, Vector3(0, 0, NAN),
-                                                     physics.ode_config), "gravity")
+            self.refused(
+                self.set_physics_properties(0.0, physics.max_update_rate, physics.gravity, physics.ode_config),
+                "time_step",
+            )
+            self.refused(
+                self.set_physics_properties(
+                    physics.time_step, physics.max_update_rate, Vector3(0, 0, NAN), physics.ode_config
+                ),
+                "gravity",
+            )
             huge = physics.ode_config
-            huge.sor_pgs_iters = 10 ** 6
-            self.refused(self.set_physics_properties(physics.time_step, physics.max_update_rate, physics.gravity,
-                                                     huge), "iterations")
+            huge.sor_pgs_iters = 10**6
+            self.refused(
+                self.set_physics_properties(physics.time_step, physics.max_update_rate, physics.gravity, huge),
+                "iterations",
+            )
             self.assertAlmostEqual(self.get_physics_properties().gravity.z, -1.62, msg="refused calls change nothing")
         finally:
             physics = self.get_physics_properties()
             physics.ode_config.sor_pgs_iters = 50
-            self.set_physics_properties(physics.time_step, physics.max_update_rate, Vector3(0, 0, -9.81),
-                                        physics.ode_config)
+            self.set_physics_properties(
+                physics.time_step, physics.max_update_rate, Vector3(0, 0, -9.81), physics.ode_config
+            )
 
     def test_pause_stops_the_clock(self):
         self.pause_physics()
@@ -277,8 +312,7 @@ class GazeboApi(unittest.TestCase):
         rospy.sleep(0.2)
         start = self.position("pushed_box")
         wrench = Wrench(Vector3(0, 30.0, 0), Vector3())
-        result = self.apply_body_wrench("pushed_box::box_link", "", Point(), wrench, rospy.Time(0),
-                                        rospy.Duration(0.5))
+        result = self.apply_body_wrench("pushed_box::box_link", "", Point(), wrench, rospy.Time(0), rospy.Duration(0.5))
         self.assertTrue(result.success, result.status_message)
         rospy.sleep(1.5)
         moved = self.position("pushed_box")
@@ -287,13 +321,25 @@ class GazeboApi(unittest.TestCase):
 
     def test_wrench_errors(self):
         wrench = Wrench(Vector3(1, 0, 0), Vector3())
-        self.refused(self.apply_body_wrench("nobody::link", "", Point(), wrench, rospy.Time(0), rospy.Duration(1)),
-                     "nobody")
-        self.refused(self.apply_body_wrench("mobile_base::base_link", "no_such_frame", Point(), wrench,
-                                            rospy.Time(0), rospy.Duration(1)), "no_such_frame")
-        self.refused(self.apply_body_wrench("mobile_base::base_link", "", Point(), Wrench(Vector3(NAN, 0, 0),
-                                                                                       Vector3()),
-                                            rospy.Time(0), rospy.Duration(1)))
+        self.refused(
+            self.apply_body_wrench("nobody::link", "", Point(), wrench, rospy.Time(0), rospy.Duration(1)), "nobody"
+        )
+        self.refused(
+            self.apply_body_wrench(
+                "mobile_base::base_link", "no_such_frame", Point(), wrench, rospy.Time(0), rospy.Duration(1)
+            ),
+            "no_such_frame",
+        )
+        self.refused(
+            self.apply_body_wrench(
+                "mobile_base::base_link",
+                "",
+                Point(),
+                Wrench(Vector3(NAN, 0, 0), Vector3()),
+                rospy.Time(0),
+                rospy.Duration(1),
+            )
+        )
         self.clear_body_wrenches("nobody::link")  # an empty response, as in gazebo_ros: it logs, and goes on
         self.assertTrue(self.get_world_properties().success)
 

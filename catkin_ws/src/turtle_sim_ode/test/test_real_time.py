@@ -28,8 +28,12 @@ class RealTimeFactor(unittest.TestCase):
         wall1, sim1 = samples[-1]
         achieved = (sim1 - sim0) / (wall1 - wall0)
         wanted = rospy.get_param("~real_time_factor")
-        self.assertAlmostEqual(achieved, wanted, delta=wanted * rospy.get_param("~tolerance"),
-                               msg="real-time factor %.4f, wanted %.2f" % (achieved, wanted))
+        self.assertAlmostEqual(
+            achieved,
+            wanted,
+            delta=wanted * rospy.get_param("~tolerance"),
+            msg="real-time factor %.4f, wanted %.2f" % (achieved, wanted),
+        )
 
 
 if __name__ == "__main__":

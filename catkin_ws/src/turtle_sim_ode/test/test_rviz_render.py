@@ -25,9 +25,13 @@ RVIZ_BACKGROUND = (48, 48, 48)
 def start_xvfb():
     """Xvfb on a display number it picks itself (-displayfd), so parallel tests never collide."""
     read_end, write_end = os.pipe()
-    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1024x768x24", "-nolisten", "tcp"],
-                              pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                              start_new_session=True)
+    server = subprocess.Popen(
+        ["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1024x768x24", "-nolisten", "tcp"],
+        pass_fds=(write_end,),
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
     os.close(write_end)
     with os.fdopen(read_end) as display_number:
         return server, ":" + display_number.readline().strip()
@@ -60,23 +64,32 @@ class RvizShowsRobot(unittest.TestCase):
     def test_robot_visible(self):
         xvfb, display = start_xvfb()
         env = dict(os.environ, DISPLAY=display)
-        rviz = subprocess.Popen(["rviz", "-d", rospy.get_param("~rviz_config")], env=env, stdout=subprocess.DEVNULL,
-                                stderr=subprocess.DEVNULL, start_new_session=True)
+        rviz = subprocess.Popen(
+            ["rviz", "-d", rospy.get_param("~rviz_config")],
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+        )
         shot_path = os.path.join(tempfile.gettempdir(), "turtle_sim_ode_rviz.png")
         try:
             deadline = time.monotonic() + rospy.get_param("~timeout")
             pixels, image = 0, None
             while time.monotonic() < deadline and pixels < rospy.get_param("~min_robot_pixels"):
                 self.assertIsNone(rviz.poll(), "rviz exited with %s" % rviz.poll())
-                dump = subprocess.run(["xwd", "-root", "-silent", "-display", display], stdout=subprocess.PIPE,
-                                      check=True).stdout
+                dump = subprocess.run(
+                    ["xwd", "-root", "-silent", "-display", display], stdout=subprocess.PIPE, check=True
+                ).stdout
                 image = read_xwd(dump)
                 pixels = robot_pixels(image)
                 time.sleep(1.0)  # rviz draws in its own time: nothing to wait on but the picture
             if image is not None:
                 plt.imsave(shot_path, image)
-            self.assertGreaterEqual(pixels, rospy.get_param("~min_robot_pixels"),
-                                    "the robot did not show in rviz; last screenshot: %s" % shot_path)
+            self.assertGreaterEqual(
+                pixels,
+                rospy.get_param("~min_robot_pixels"),
+                "the robot did not show in rviz; last screenshot: %s" % shot_path,
+            )
         finally:
             stop(rviz)
             stop(xvfb)

@@ -44,7 +44,7 @@ def add_two_ints_client(argv: List[str]) -> int:
             if timeout_text is None:
                 return _usage_error("--timeout needs a number of seconds")
         elif arg.startswith("--timeout="):
-            timeout_text = arg[len("--timeout="):]
+            timeout_text = arg[len("--timeout=") :]
         elif arg in ("-h", "--help"):
             return _usage_error("Adds two integers with the add_two_ints service.")
         else:

@@ -16,7 +16,7 @@ def node_handles() -> None:
     rospy.init_node("node_handles")
     publishers = []
     for label, name in NAMES:
-        rospy.loginfo('%s -> %s', label, rospy.resolve_name(name))
+        rospy.loginfo("%s -> %s", label, rospy.resolve_name(name))
         publishers.append(rospy.Publisher(name, String, queue_size=1, latch=True))
     for publisher in publishers:
         publisher.publish("published on " + publisher.resolved_name)

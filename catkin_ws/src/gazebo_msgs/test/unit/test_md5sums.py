@@ -65,13 +65,44 @@ EXPECTED_MD5 = dict(PUBLISHED, **UPSTREAM_GENERATED)
 
 # The interface files of gazebo_msgs 2.9.2, the last release on noetic-devel.
 UPSTREAM_FILES = {
-    "msg": ["ContactState", "ContactsState", "LinkState", "LinkStates", "ModelState", "ModelStates",
-            "ODEJointProperties", "ODEPhysics", "PerformanceMetrics", "SensorPerformanceMetric", "WorldState"],
-    "srv": ["ApplyBodyWrench", "ApplyJointEffort", "BodyRequest", "DeleteLight", "DeleteModel",
-            "GetJointProperties", "GetLightProperties", "GetLinkProperties", "GetLinkState", "GetModelProperties",
-            "GetModelState", "GetPhysicsProperties", "GetWorldProperties", "JointRequest", "SetJointProperties",
-            "SetJointTrajectory", "SetLightProperties", "SetLinkProperties", "SetLinkState", "SetModelConfiguration",
-            "SetModelState", "SetPhysicsProperties", "SpawnModel"],
+    "msg": [
+        "ContactState",
+        "ContactsState",
+        "LinkState",
+        "LinkStates",
+        "ModelState",
+        "ModelStates",
+        "ODEJointProperties",
+        "ODEPhysics",
+        "PerformanceMetrics",
+        "SensorPerformanceMetric",
+        "WorldState",
+    ],
+    "srv": [
+        "ApplyBodyWrench",
+        "ApplyJointEffort",
+        "BodyRequest",
+        "DeleteLight",
+        "DeleteModel",
+        "GetJointProperties",
+        "GetLightProperties",
+        "GetLinkProperties",
+        "GetLinkState",
+        "GetModelProperties",
+        "GetModelState",
+        "GetPhysicsProperties",
+        "GetWorldProperties",
+        "JointRequest",
+        "SetJointProperties",
+        "SetJointTrajectory",
+        "SetLightProperties",
+        "SetLinkProperties",
+        "SetLinkState",
+        "SetModelConfiguration",
+        "SetModelState",
+        "SetPhysicsProperties",
+        "SpawnModel",
+    ],
 }
 UPSTREAM_TYPES = sorted("%s/%s" % (kind, name) for kind, names in UPSTREAM_FILES.items() for name in names)
 
@@ -86,6 +117,7 @@ def dependency_msg_dir(package):
     candidates = []
     try:
         import rospkg
+
         candidates.append(Path(rospkg.RosPack().get_path(package)))
     except Exception:  # rospkg missing, or the package is not on ROS_PACKAGE_PATH
         pass

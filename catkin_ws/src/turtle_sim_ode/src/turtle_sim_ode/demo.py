@@ -51,7 +51,11 @@ class CircleDemo:
                 with self._lock:
                     x, y = self.truth[-1] if self.truth else (math.nan, math.nan)
                 line = "sim %6.2f s | real-time factor %5.1f | x %6.3f y %6.3f m" % (
-                    elapsed, elapsed / wall if wall > 0 else 0.0, x, y)
+                    elapsed,
+                    elapsed / wall if wall > 0 else 0.0,
+                    x,
+                    y,
+                )
                 sys.stdout.write(("\r" + line) if interactive else (line + "\n"))
                 sys.stdout.flush()
             try:

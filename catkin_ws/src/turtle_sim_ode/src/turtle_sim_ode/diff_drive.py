@@ -28,8 +28,7 @@ class DiffDriveParams:
 
     def validate(self) -> None:
         """Raise ValueError naming the bad field and its value."""
-        for name in ("wheel_separation", "wheel_radius", "max_wheel_torque", "max_linear",
-                     "max_angular"):
+        for name in ("wheel_separation", "wheel_radius", "max_wheel_torque", "max_linear", "max_angular"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or math.isnan(value) or value <= 0:
                 raise ValueError(f"{name} must be > 0, got {value!r}")
@@ -38,12 +37,12 @@ class DiffDriveParams:
             if not isinstance(value, (int, float)) or math.isnan(value) or value < 0:
                 raise ValueError(f"{name} must be >= 0, got {value!r}")
         if self.odometry_integration not in INTEGRATIONS:
-            raise ValueError(f"odometry_integration must be one of {INTEGRATIONS}, "
-                             f"got {self.odometry_integration!r}")
+            raise ValueError(
+                f"odometry_integration must be one of {INTEGRATIONS}, " f"got {self.odometry_integration!r}"
+            )
 
     @classmethod
-    def from_kobuki_plugin(cls, params: Mapping[str, str],
-                           **overrides: object) -> "DiffDriveParams":
+    def from_kobuki_plugin(cls, params: Mapping[str, str], **overrides: object) -> "DiffDriveParams":
         """Read libgazebo_ros_kobuki.so's <plugin> parameters (wheel_diameter, torque, ...);
         keyword ``overrides`` win over them."""
         fields: Dict[str, object] = {}
@@ -71,8 +70,7 @@ class DiffDriveController:
     URDFs where left and right wheels share ``<axis xyz="0 1 0"/>``.
     """
 
-    def __init__(self, left: ode.HingeJoint, right: ode.HingeJoint,
-                 params: DiffDriveParams) -> None:
+    def __init__(self, left: ode.HingeJoint, right: ode.HingeJoint, params: DiffDriveParams) -> None:
         params.validate()
         self.params = params
         self._left = left
@@ -99,8 +97,10 @@ class DiffDriveController:
         if not (math.isfinite(linear) and math.isfinite(angular)):
             return False
         p = self.params
-        self._command = (max(-p.max_linear, min(p.max_linear, linear)),
-                         max(-p.max_angular, min(p.max_angular, angular)))
+        self._command = (
+            max(-p.max_linear, min(p.max_linear, linear)),
+            max(-p.max_angular, min(p.max_angular, angular)),
+        )
         self._command_time = now
         return True
 
@@ -146,13 +146,13 @@ def _wrap(angle: float) -> float:
 class WheelOdometry:
     """Dead reckoning from wheel joint angles (encoders), as the Kobuki base does."""
 
-    def __init__(self, wheel_separation: float, wheel_radius: float,
-                 integration: str = "midpoint") -> None:
+    def __init__(self, wheel_separation: float, wheel_radius: float, integration: str = "midpoint") -> None:
         if integration not in INTEGRATIONS:
             raise ValueError(f"integration must be one of {INTEGRATIONS}, got {integration!r}")
         if not wheel_separation > 0 or not wheel_radius > 0:
-            raise ValueError(f"wheel_separation and wheel_radius must be > 0, got "
-                             f"{wheel_separation!r}, {wheel_radius!r}")
+            raise ValueError(
+                f"wheel_separation and wheel_radius must be > 0, got " f"{wheel_separation!r}, {wheel_radius!r}"
+            )
         self.wheel_separation = wheel_separation
         self.wheel_radius = wheel_radius
         self.exact = integration == "exact"

@@ -54,9 +54,16 @@ def _detect_format(xml: str) -> str:
 class GazeboApi:
     """Registers the /gazebo services and topics of the node it is given (a node named `gazebo`)."""
 
-    def __init__(self, sim: Simulation, lock: threading.Lock, on_spawn: Callable[[str, str], None],
-                 on_delete: Callable[[str], None], pause: Callable[[bool], None], is_paused: Callable[[], bool],
-                 states_rate: float) -> None:
+    def __init__(
+        self,
+        sim: Simulation,
+        lock: threading.Lock,
+        on_spawn: Callable[[str, str], None],
+        on_delete: Callable[[str], None],
+        pause: Callable[[bool], None],
+        is_paused: Callable[[], bool],
+        states_rate: float,
+    ) -> None:
         self._sim = sim
         self._lock = lock
         self._on_spawn = on_spawn
@@ -89,8 +96,10 @@ class GazeboApi:
             ("get_light_properties", gz.GetLightProperties, self._no_lights),
             ("set_light_properties", gz.SetLightProperties, self._no_lights),
         ]
-        self._services = [rospy.Service("~" + name, srv_type, self._answer(name, srv_type, handler))
-                          for name, srv_type, handler in services]
+        self._services = [
+            rospy.Service("~" + name, srv_type, self._answer(name, srv_type, handler))
+            for name, srv_type, handler in services
+        ]
         self._services += [
             rospy.Service("~pause_physics", Empty, lambda _: self._empty(lambda: self._pause(True))),
             rospy.Service("~unpause_physics", Empty, lambda _: self._empty(lambda: self._pause(False))),
@@ -137,8 +146,9 @@ class GazeboApi:
 
     @staticmethod
     def _no_lights(request, response) -> None:
-        raise WorldError("light '%s' does not exist: the simulator has no lights (it does not render)"
-                         % request.light_name)
+        raise WorldError(
+            "light '%s' does not exist: the simulator has no lights (it does not render)" % request.light_name
+        )
 
     # --- models ---------------------------------------------------------------------------------------------
     def _spawn(self, request, response) -> None:
@@ -151,7 +161,8 @@ class GazeboApi:
         warnings = spawn(name, request.model_xml, initial_pose, request.reference_frame)
         self._on_spawn(name, request.robot_namespace)
         response.status_message = "SpawnModel: Successfully spawned entity" + (
-            " (warnings: %s)" % "; ".join(warnings) if warnings else "")
+            " (warnings: %s)" % "; ".join(warnings) if warnings else ""
+        )
         for warning in warnings:
             rospy.logwarn("spawn %s: %s", name, warning)
         rospy.loginfo("spawned model [%s]", name)
@@ -162,8 +173,9 @@ class GazeboApi:
         response.status_message = "DeleteModel: successfully deleted model"
 
     def _get_model_state(self, request, response) -> None:
-        position, quaternion, linear, angular = self._sim.get_model_state(request.model_name,
-                                                                          request.relative_entity_name)
+        position, quaternion, linear, angular = self._sim.get_model_state(
+            request.model_name, request.relative_entity_name
+        )
         self._request_count += 1
         response.header.seq = self._request_count
         response.header.stamp = rospy.Time.from_sec(self._sim.sim_time)
@@ -177,8 +189,14 @@ class GazeboApi:
         response.status_message = "SetModelState: set model state done"
 
     def _apply_model_state(self, state: ModelState) -> None:
-        self._sim.set_model_state(state.model_name, xyz(state.pose.position), quaternion_of(state.pose),
-                                  xyz(state.twist.linear), xyz(state.twist.angular), state.reference_frame)
+        self._sim.set_model_state(
+            state.model_name,
+            xyz(state.pose.position),
+            quaternion_of(state.pose),
+            xyz(state.twist.linear),
+            xyz(state.twist.angular),
+            state.reference_frame,
+        )
 
     def _on_set_model_state(self, state: ModelState) -> None:
         try:
@@ -200,8 +218,9 @@ class GazeboApi:
     # --- links ----------------------------------------------------------------------------------------------
     def _get_link_state(self, request, response) -> None:
         position, quaternion, linear, angular = self._sim.get_link_state(request.link_name, request.reference_frame)
-        response.link_state = LinkState(request.link_name, pose_msg(position, quaternion),
-                                        twist_msg(linear, angular), request.reference_frame)
+        response.link_state = LinkState(
+            request.link_name, pose_msg(position, quaternion), twist_msg(linear, angular), request.reference_frame
+        )
         response.status_message = "GetLinkState: got state"
 
     def _set_link_state(self, request, response) -> None:
@@ -209,8 +228,14 @@ class GazeboApi:
         response.status_message = "SetLinkState: success"
 
     def _apply_link_state(self, state: LinkState) -> None:
-        self._sim.set_link_state(state.link_name, xyz(state.pose.position), quaternion_of(state.pose),
-                                 xyz(state.twist.linear), xyz(state.twist.angular), state.reference_frame)
+        self._sim.set_link_state(
+            state.link_name,
+            xyz(state.pose.position),
+            quaternion_of(state.pose),
+            xyz(state.twist.linear),
+            xyz(state.twist.angular),
+            state.reference_frame,
+        )
 
     def _on_set_link_state(self, state: LinkState) -> None:
         try:
@@ -227,9 +252,14 @@ class GazeboApi:
         response.status_message = "GetLinkProperties: got properties"
 
     def _set_link_properties(self, request, response) -> None:
-        self._sim.set_link_properties(request.link_name, xyz(request.com.position), quaternion_of(request.com),
-                                      request.gravity_mode, request.mass,
-                                      (request.ixx, request.ixy, request.ixz, request.iyy, request.iyz, request.izz))
+        self._sim.set_link_properties(
+            request.link_name,
+            xyz(request.com.position),
+            quaternion_of(request.com),
+            request.gravity_mode,
+            request.mass,
+            (request.ixx, request.ixy, request.ixz, request.iyy, request.iyz, request.izz),
+        )
         response.status_message = "SetLinkProperties: properties set"
 
     # --- joints ---------------------------------------------------------------------------------------------
@@ -246,25 +276,32 @@ class GazeboApi:
 
     def _set_model_configuration(self, request, response) -> None:
         if len(request.joint_names) != len(request.joint_positions):
-            raise WorldError("%d joint names but %d positions" % (len(request.joint_names),
-                                                                  len(request.joint_positions)))
-        self._sim.set_model_configuration(request.model_name, list(request.joint_names),
-                                          list(request.joint_positions))
+            raise WorldError(
+                "%d joint names but %d positions" % (len(request.joint_names), len(request.joint_positions))
+            )
+        self._sim.set_model_configuration(request.model_name, list(request.joint_names), list(request.joint_positions))
         response.status_message = "SetModelConfiguration: success"
 
     # --- forces ---------------------------------------------------------------------------------------------
     def _apply_body_wrench(self, request, response) -> None:
-        self._sim.apply_body_wrench(request.body_name, request.reference_frame, xyz(request.reference_point),
-                                    xyz(request.wrench.force), xyz(request.wrench.torque),
-                                    request.start_time.to_sec(), request.duration.to_sec())
+        self._sim.apply_body_wrench(
+            request.body_name,
+            request.reference_frame,
+            xyz(request.reference_point),
+            xyz(request.wrench.force),
+            xyz(request.wrench.torque),
+            request.start_time.to_sec(),
+            request.duration.to_sec(),
+        )
         response.status_message = "ApplyBodyWrench: wrench applied"
 
     def _clear_body_wrenches(self, request, response) -> None:
         self._sim.clear_body_wrenches(request.body_name)
 
     def _apply_joint_effort(self, request, response) -> None:
-        self._sim.apply_joint_effort(request.joint_name, request.effort, request.start_time.to_sec(),
-                                     request.duration.to_sec())
+        self._sim.apply_joint_effort(
+            request.joint_name, request.effort, request.start_time.to_sec(), request.duration.to_sec()
+        )
         response.status_message = "ApplyJointEffort: effort set"
 
     def _clear_joint_forces(self, request, response) -> None:
@@ -283,13 +320,23 @@ class GazeboApi:
     def _set_physics_properties(self, request, response) -> None:
         ode = request.ode_config
         warnings = self._sim.set_physics_properties(
-            time_step=request.time_step, max_update_rate=request.max_update_rate, gravity=xyz(request.gravity),
-            iterations=ode.sor_pgs_iters, erp=ode.erp, cfm=ode.cfm, contact_surface_layer=ode.contact_surface_layer,
-            contact_max_correcting_vel=ode.contact_max_correcting_vel, max_contacts=ode.max_contacts,
-            auto_disable_bodies=ode.auto_disable_bodies, sor_pgs_precon_iters=ode.sor_pgs_precon_iters,
-            sor_pgs_w=ode.sor_pgs_w, sor_pgs_rms_error_tol=ode.sor_pgs_rms_error_tol)
+            time_step=request.time_step,
+            max_update_rate=request.max_update_rate,
+            gravity=xyz(request.gravity),
+            iterations=ode.sor_pgs_iters,
+            erp=ode.erp,
+            cfm=ode.cfm,
+            contact_surface_layer=ode.contact_surface_layer,
+            contact_max_correcting_vel=ode.contact_max_correcting_vel,
+            max_contacts=ode.max_contacts,
+            auto_disable_bodies=ode.auto_disable_bodies,
+            sor_pgs_precon_iters=ode.sor_pgs_precon_iters,
+            sor_pgs_w=ode.sor_pgs_w,
+            sor_pgs_rms_error_tol=ode.sor_pgs_rms_error_tol,
+        )
         response.status_message = "SetPhysicsProperties: physics set" + (
-            " (warnings: %s)" % "; ".join(warnings) if warnings else "")
+            " (warnings: %s)" % "; ".join(warnings) if warnings else ""
+        )
 
     def _reset_world(self) -> None:
         self._sim.reset_world()

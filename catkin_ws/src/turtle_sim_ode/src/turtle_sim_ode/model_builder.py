@@ -26,29 +26,35 @@ def quat_from_rpy(roll: float, pitch: float, yaw: float) -> Quat:
     cr, sr = math.cos(roll / 2), math.sin(roll / 2)
     cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
     cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy,
-            cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy)
+    return (
+        cr * cp * cy + sr * sp * sy,
+        sr * cp * cy - cr * sp * sy,
+        cr * sp * cy + sr * cp * sy,
+        cr * cp * sy - sr * sp * cy,
+    )
 
 
 def quat_multiply(a: Quat, b: Quat) -> Quat:
     aw, ax, ay, az = a
     bw, bx, by, bz = b
-    return (aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
-            aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw)
+    return (
+        aw * bw - ax * bx - ay * by - az * bz,
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+    )
 
 
 def quat_rotate(q: Quat, v: Vec3) -> Vec3:
     w, x, y, z = q
     # v + 2w(u x v) + 2u x (u x v), u = (x, y, z)
     tx, ty, tz = 2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]), 2 * (x * v[1] - y * v[0])
-    return (v[0] + w * tx + y * tz - z * ty, v[1] + w * ty + z * tx - x * tz,
-            v[2] + w * tz + x * ty - y * tx)
+    return (v[0] + w * tx + y * tz - z * ty, v[1] + w * ty + z * tx - x * tz, v[2] + w * tz + x * ty - y * tx)
 
 
 def quat_matrix(q: Quat) -> Matrix3:
     columns = [quat_rotate(q, axis) for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
-    return tuple(  # type: ignore[return-value]
-        tuple(columns[c][r] for c in range(3)) for r in range(3))
+    return tuple(tuple(columns[c][r] for c in range(3)) for r in range(3))  # type: ignore[return-value]
 
 
 def compose(a: Transform, b: Transform) -> Transform:
@@ -125,8 +131,7 @@ class JointHandle:
             self._last_wrapped = self._read_wrapped()
 
 
-def _after_step_hook(continuous: List[JointHandle],
-                     damping: List[Tuple[JointHandle, float]]) -> Callable[[], None]:
+def _after_step_hook(continuous: List[JointHandle], damping: List[Tuple[JointHandle, float]]) -> Callable[[], None]:
     def after_step() -> None:
         for handle in continuous:
             handle.track_turns()
@@ -137,11 +142,11 @@ def _after_step_hook(continuous: List[JointHandle],
                 handle.joint.addForce(effort)
             else:
                 handle.joint.addTorque(effort)
+
     return after_step
 
 
-def _remove_static_geoms(physics: PhysicsWorld, space: ode.SpaceBase,
-                         geoms: Dict[str, List[ode.GeomObject]]) -> None:
+def _remove_static_geoms(physics: PhysicsWorld, space: ode.SpaceBase, geoms: Dict[str, List[ode.GeomObject]]) -> None:
     """Take a static model's geoms out of the shared static space."""
     for link_geoms in geoms.values():
         for geom in link_geoms:
@@ -152,10 +157,17 @@ def _remove_static_geoms(physics: PhysicsWorld, space: ode.SpaceBase,
 class BuiltModel:
     """One URDF model in a PhysicsWorld: link poses, joints, teleport and removal."""
 
-    def __init__(self, physics: PhysicsWorld, robot: RobotModel, space: ode.SpaceBase,
-                 bodies: List[ode.Body], links: Dict[str, LinkFrame],
-                 geoms: Dict[str, List[ode.GeomObject]], joints: Dict[str, JointHandle],
-                 damping: List[Tuple[JointHandle, float]]) -> None:
+    def __init__(
+        self,
+        physics: PhysicsWorld,
+        robot: RobotModel,
+        space: ode.SpaceBase,
+        bodies: List[ode.Body],
+        links: Dict[str, LinkFrame],
+        geoms: Dict[str, List[ode.GeomObject]],
+        joints: Dict[str, JointHandle],
+        damping: List[Tuple[JointHandle, float]],
+    ) -> None:
         self.name = robot.name
         self.robot = robot
         self.root_link = robot.root
@@ -212,11 +224,9 @@ class BuiltModel:
 
     def model_transform(self) -> Transform:
         """World pose of the model frame (a URDF's root link) as (position, quaternion wxyz)."""
-        return compose(self.link_transform(self.root_link),
-                       inverse(pose_transform(self.robot.root_pose)))
+        return compose(self.link_transform(self.root_link), inverse(pose_transform(self.robot.root_pose)))
 
-    def set_pose(self, x: float, y: float, z: float,
-                 roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0) -> None:
+    def set_pose(self, x: float, y: float, z: float, roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0) -> None:
         """Teleport so the model frame (a URDF's root link) is at this pose; joints keep their
         positions, velocities become zero."""
         self.set_transform(((x, y, z), quat_from_rpy(roll, pitch, yaw)))
@@ -235,8 +245,7 @@ class BuiltModel:
                 position, quaternion = compose(move, (geom.getPosition(), geom.getQuaternion()))
                 geom.setPosition(position)
                 geom.setQuaternion(quaternion)
-            self.links = {name: LinkFrame(None, compose(move, frame.offset))
-                          for name, frame in self.links.items()}
+            self.links = {name: LinkFrame(None, compose(move, frame.offset)) for name, frame in self.links.items()}
 
     def damping(self, joint: str) -> float:
         """Viscous damping coefficient of a movable joint (0 if none)."""
@@ -265,12 +274,17 @@ class BuiltModel:
         ode_mass = ode.Mass()
         ode_mass.setParameters(mass, 0.0, 0.0, 0.0, ixx, iyy, izz, ixy, ixz, iyz)
         shift = compose(frame.offset, (com, _NO_ROTATION))[0]  # the new COM in the body frame
-        attached = [h for h in self.joints.values()
-                    if h.joint.getBody(0) is body or h.joint.getBody(1) is body]
+        attached = [h for h in self.joints.values() if h.joint.getBody(0) is body or h.joint.getBody(1) is body]
         # (handle, anchor, axis, position) in the world before the move.
-        before = [(h, h.joint.getAnchor() if h.type != "prismatic" else None, h.joint.getAxis(),
-                   h.joint.getPosition() if h.type == "prismatic" else h.joint.getAngle())
-                  for h in attached]
+        before = [
+            (
+                h,
+                h.joint.getAnchor() if h.type != "prismatic" else None,
+                h.joint.getAxis(),
+                h.joint.getPosition() if h.type == "prismatic" else h.joint.getAngle(),
+            )
+            for h in attached
+        ]
         moved = compose((body.getPosition(), body.getQuaternion()), (shift, _NO_ROTATION))[0]
         velocity = body.getPointVel(moved)
         body.setMass(ode_mass)
@@ -278,8 +292,14 @@ class BuiltModel:
         body.setLinearVel(velocity)
         for name, link_frame in list(self.links.items()):
             if link_frame.body is body:
-                offset = ((link_frame.offset[0][0] - shift[0], link_frame.offset[0][1] - shift[1],
-                           link_frame.offset[0][2] - shift[2]), link_frame.offset[1])
+                offset = (
+                    (
+                        link_frame.offset[0][0] - shift[0],
+                        link_frame.offset[0][1] - shift[1],
+                        link_frame.offset[0][2] - shift[2],
+                    ),
+                    link_frame.offset[1],
+                )
                 self.links[name] = LinkFrame(body, offset)
                 for geom, collision in zip(self.geoms[name], self.robot.links[name].collisions):
                     geom.setOffsetPosition(compose(offset, pose_transform(collision.origin))[0])
@@ -353,8 +373,9 @@ def _rotated_inertia(q: Quat, inertia: Matrix3) -> Matrix3:
     """R I R^T."""
     rot = quat_matrix(q)
     return tuple(  # type: ignore[return-value]
-        tuple(sum(rot[r][a] * inertia[a][b] * rot[k][b] for a in range(3) for b in range(3))
-              for k in range(3)) for r in range(3))
+        tuple(sum(rot[r][a] * inertia[a][b] * rot[k][b] for a in range(3) for b in range(3)) for k in range(3))
+        for r in range(3)
+    )
 
 
 def _create_geom(space: ode.SpaceBase, geometry: Geometry) -> ode.GeomObject:
@@ -375,11 +396,11 @@ def _surface_for(robot: RobotModel, link: str, default: SurfaceParams) -> Surfac
         mu=default.mu if tags.mu1 is None else tags.mu1,
         mu2=default.mu2 if tags.mu2 is None else tags.mu2,
         kp=default.kp if tags.kp is None else tags.kp,
-        kd=default.kd if tags.kd is None else tags.kd)
+        kd=default.kd if tags.kd is None else tags.kd,
+    )
 
 
-def _build_static(physics: PhysicsWorld, robot: RobotModel,
-                  world_of: Dict[str, Transform]) -> BuiltModel:
+def _build_static(physics: PhysicsWorld, robot: RobotModel, world_of: Dict[str, Transform]) -> BuiltModel:
     """Body-less collision geoms in the physics' static space, at the links' world poses."""
     space = physics.static_space
     links: Dict[str, LinkFrame] = {}
@@ -402,9 +423,12 @@ def _build_static(physics: PhysicsWorld, robot: RobotModel,
     return BuiltModel(physics, robot, space, [], links, geoms, {}, [])
 
 
-def build_model(physics: PhysicsWorld, robot: RobotModel,
-                pose: Sequence[float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
-                self_collide: bool = False) -> BuiltModel:
+def build_model(
+    physics: PhysicsWorld,
+    robot: RobotModel,
+    pose: Sequence[float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+    self_collide: bool = False,
+) -> BuiltModel:
     """Create the model with its model frame (a URDF's root link) at pose (x, y, z, roll,
     pitch, yaw).
 
@@ -417,8 +441,8 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
     if len(pose) != 6 or not all(math.isfinite(v) for v in pose):
         raise ValueError(f"pose must be 6 finite numbers (x, y, z, roll, pitch, yaw), got {pose!r}")
     world_of: Dict[str, Transform] = {
-        robot.root: compose(((pose[0], pose[1], pose[2]), quat_from_rpy(*pose[3:])),
-                            pose_transform(robot.root_pose))}
+        robot.root: compose(((pose[0], pose[1], pose[2]), quat_from_rpy(*pose[3:])), pose_transform(robot.root_pose))
+    }
     owner: Dict[str, str] = {robot.root: robot.root}  # link -> link whose body carries it
     members_of: Dict[str, List[str]] = {robot.root: [robot.root]}  # the reverse, in BFS order
     child_joints: Dict[str, List[Joint]] = {}
@@ -448,24 +472,33 @@ def build_model(physics: PhysicsWorld, robot: RobotModel,
                 if inertial is None:
                     continue
                 position, rotation = compose(relative[member], pose_transform(inertial.origin))
-                parts.append(
-                    (inertial.mass, position, _rotated_inertia(rotation, inertial.matrix())))
+                parts.append((inertial.mass, position, _rotated_inertia(rotation, inertial.matrix())))
             if not parts:
-                raise ModelError(f"link '{body_link}' and the links fixed to it have no "
-                                 f"<inertial>; a moving body needs mass")
+                raise ModelError(
+                    f"link '{body_link}' and the links fixed to it have no " f"<inertial>; a moving body needs mass"
+                )
             mass, com, inertia = _inertia_about_com(parts)
             body = ode.Body(physics.world)
             ode_mass = ode.Mass()
-            ode_mass.setParameters(mass, 0.0, 0.0, 0.0, inertia[0][0], inertia[1][1], inertia[2][2],
-                                   inertia[0][1], inertia[0][2], inertia[1][2])
+            ode_mass.setParameters(
+                mass,
+                0.0,
+                0.0,
+                0.0,
+                inertia[0][0],
+                inertia[1][1],
+                inertia[2][2],
+                inertia[0][1],
+                inertia[0][2],
+                inertia[1][2],
+            )
             body.setMass(ode_mass)
             body_pose = compose(world_of[body_link], (com, (1.0, 0.0, 0.0, 0.0)))
             body.setPosition(body_pose[0])
             body.setQuaternion(body_pose[1])
             bodies[body_link] = body
             for member in members:
-                offset = compose(((-com[0], -com[1], -com[2]), (1.0, 0.0, 0.0, 0.0)),
-                                 relative[member])
+                offset = compose(((-com[0], -com[1], -com[2]), (1.0, 0.0, 0.0, 0.0)), relative[member])
                 links[member] = LinkFrame(body, offset)
                 geoms[member] = []
                 surface = _surface_for(robot, member, physics.params.default_surface)

@@ -57,8 +57,7 @@ def combine_surfaces(a: SurfaceParams, b: SurfaceParams, time_step: float) -> Co
     kp = 1.0 / (1.0 / a.kp + 1.0 / b.kp)
     kd = a.kd + b.kd
     denominator = time_step * kp + kd
-    return (_CONTACT_MODE, min(a.mu, b.mu), min(a.mu2, b.mu2),
-            time_step * kp / denominator, 1.0 / denominator)
+    return (_CONTACT_MODE, min(a.mu, b.mu), min(a.mu2, b.mu2), time_step * kp / denominator, 1.0 / denominator)
 
 
 @dataclass
@@ -78,8 +77,7 @@ class PhysicsParams:
     contact_surface_layer: float = 0.0001
     default_surface: SurfaceParams = field(default_factory=SurfaceParams)
     # Gazebo's ground_plane model surface.
-    ground_surface: SurfaceParams = field(
-        default_factory=lambda: SurfaceParams(mu=100.0, mu2=50.0))
+    ground_surface: SurfaceParams = field(default_factory=lambda: SurfaceParams(mu=100.0, mu2=50.0))
 
     def validate(self) -> None:
         """Raise ValueError naming the bad field and its value."""
@@ -87,18 +85,23 @@ class PhysicsParams:
             raise ValueError(f"time_step must be in (0, 0.1] s, got {self.time_step!r}")
         if self.solver not in SOLVERS:
             raise ValueError(f"solver must be one of {SOLVERS}, got {self.solver!r}")
-        if (not isinstance(self.solver_iterations, int) or isinstance(self.solver_iterations, bool)
-                or not 1 <= self.solver_iterations <= 1000):
-            raise ValueError(
-                f"solver_iterations must be an integer in 1..1000, got {self.solver_iterations!r}")
+        if (
+            not isinstance(self.solver_iterations, int)
+            or isinstance(self.solver_iterations, bool)
+            or not 1 <= self.solver_iterations <= 1000
+        ):
+            raise ValueError(f"solver_iterations must be an integer in 1..1000, got {self.solver_iterations!r}")
         if len(self.gravity) != 3 or not all(_finite(g) for g in self.gravity):
             raise ValueError(f"gravity must be 3 finite numbers, got {self.gravity!r}")
         if not _finite(self.erp) or not 0 <= self.erp <= 1:
             raise ValueError(f"erp must be in [0, 1], got {self.erp!r}")
         if not _finite(self.cfm) or self.cfm < 0:
             raise ValueError(f"cfm must be finite and >= 0, got {self.cfm!r}")
-        if (not isinstance(self.max_contacts, int) or isinstance(self.max_contacts, bool)
-                or not 1 <= self.max_contacts <= 64):
+        if (
+            not isinstance(self.max_contacts, int)
+            or isinstance(self.max_contacts, bool)
+            or not 1 <= self.max_contacts <= 64
+        ):
             raise ValueError(f"max_contacts must be an integer in 1..64, got {self.max_contacts!r}")
         for name in ("contact_max_correcting_vel", "contact_surface_layer"):
             value = getattr(self, name)
@@ -126,9 +129,12 @@ def _merge_line_contact(contacts: Sequence[ode.Contact]) -> Sequence[ode.Contact
     # Centroid of a trapezoid of heights depth1, depth2, as a fraction from pos1.
     t = (depth1 + 2.0 * depth2) / (3.0 * total) if total > 0 else 0.5
     first.setContactGeomParams(
-        (pos1[0] + t * (pos2[0] - pos1[0]), pos1[1] + t * (pos2[1] - pos1[1]),
-         pos1[2] + t * (pos2[2] - pos1[2])),
-        normal1, depth1 + t * (depth2 - depth1), geom1, geom2)
+        (pos1[0] + t * (pos2[0] - pos1[0]), pos1[1] + t * (pos2[1] - pos1[1]), pos1[2] + t * (pos2[2] - pos1[2])),
+        normal1,
+        depth1 + t * (depth2 - depth1),
+        geom1,
+        geom2,
+    )
     return (first,)
 
 
@@ -208,8 +214,9 @@ class PhysicsWorld:
         self._stepper = self.world.quickStep if params.solver == "quick" else self.world.step
         self._surfaces[self.ground] = params.ground_surface
         self._pair_cache.clear()
-        self._ground_tests = [(geom, body, self._pair_contact(self.ground, geom))
-                              for geom, body, _ in self._ground_tests]
+        self._ground_tests = [
+            (geom, body, self._pair_contact(self.ground, geom)) for geom, body, _ in self._ground_tests
+        ]
 
     # --- spaces and geoms ---------------------------------------------------------
     def create_model_space(self, self_collide: bool = False) -> ode.SpaceBase:
@@ -308,19 +315,23 @@ class PhysicsWorld:
         pair = self._pair_cache.get(key)
         if pair is None:
             default = self.params.default_surface
-            pair = (combine_surfaces(self._surfaces.get(geom1, default),
-                                     self._surfaces.get(geom2, default), self.time_step),
-                    isinstance(geom1, ode.GeomCylinder) or isinstance(geom2, ode.GeomCylinder))
+            pair = (
+                combine_surfaces(
+                    self._surfaces.get(geom1, default), self._surfaces.get(geom2, default), self.time_step
+                ),
+                isinstance(geom1, ode.GeomCylinder) or isinstance(geom2, ode.GeomCylinder),
+            )
             self._pair_cache[key] = pair
         return pair
 
-    def _add_contacts(self, contacts: Sequence[ode.Contact], body1: Optional[ode.Body],
-                      body2: Optional[ode.Body], pair: PairContact) -> None:
+    def _add_contacts(
+        self, contacts: Sequence[ode.Contact], body1: Optional[ode.Body], body2: Optional[ode.Body], pair: PairContact
+    ) -> None:
         (mode, mu, mu2, erp, cfm), merge_line = pair
         if merge_line and len(contacts) == 2:
             contacts = _merge_line_contact(contacts)
         elif len(contacts) > self.params.max_contacts:
-            contacts = contacts[:self.params.max_contacts]
+            contacts = contacts[: self.params.max_contacts]
         world, keep = self.world, self._contact_joints.append
         for contact in contacts:
             contact.setMode(mode)

@@ -116,9 +116,15 @@ def kobuki_drive(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, 
         params=DiffDriveParams.from_kobuki_plugin(plugin.params, **overrides),
         command_topic=model_name + "/commands/velocity",
         reset_topic=model_name + "/commands/reset_odometry",
-        odometry_topic="odom", odometry_frame="", base_frame="", odometry_source="encoder",
-        publish_tf=_flag(plugin, "publish_tf", True), publish_joint_states=True, update_rate=0.0,
-        robot_namespace=_text(plugin, "robotNamespace", ""))
+        odometry_topic="odom",
+        odometry_frame="",
+        base_frame="",
+        odometry_source="encoder",
+        publish_tf=_flag(plugin, "publish_tf", True),
+        publish_joint_states=True,
+        update_rate=0.0,
+        robot_namespace=_text(plugin, "robotNamespace", ""),
+    )
 
 
 def gazebo_ros_diff_drive(plugin: GazeboPlugin, overrides: Mapping[str, object]) -> DriveConfig:
@@ -152,7 +158,8 @@ def gazebo_ros_diff_drive(plugin: GazeboPlugin, overrides: Mapping[str, object])
         left_joint=_text(plugin, "leftJoint", "left_joint"),
         right_joint=_text(plugin, "rightJoint", "right_joint"),
         params=params,
-        command_topic=_text(plugin, "commandTopic", "cmd_vel"), reset_topic="",
+        command_topic=_text(plugin, "commandTopic", "cmd_vel"),
+        reset_topic="",
         odometry_topic=_text(plugin, "odometryTopic", "odom"),
         odometry_frame=_text(plugin, "odometryFrame", "odom"),
         base_frame=_text(plugin, "robotBaseFrame", "base_footprint"),
@@ -160,32 +167,40 @@ def gazebo_ros_diff_drive(plugin: GazeboPlugin, overrides: Mapping[str, object])
         publish_tf=_flag(plugin, "publishTf", _flag(plugin, "publishOdomTF", True)),
         publish_joint_states=_flag(plugin, "publishWheelJointState", False),
         update_rate=_number(plugin, "updateRate", 100.0),
-        robot_namespace=_text(plugin, "robotNamespace", ""))
+        robot_namespace=_text(plugin, "robotNamespace", ""),
+    )
 
 
 def ground_truth(plugin: GazeboPlugin) -> GroundTruthConfig:
     body = _text(plugin, "bodyName", "")
     if not body:
         raise ModelError(f"{plugin.filename} needs <bodyName>")
-    return GroundTruthConfig(body=body, topic=_text(plugin, "topicName", "ground_truth"),
-                             frame=_text(plugin, "frameName", "world"),
-                             update_rate=_number(plugin, "updateRate", 0.0),
-                             gaussian_noise=_number(plugin, "gaussianNoise", 0.0),
-                             xyz_offset=_triple(plugin, "xyzOffsets" if "xyzOffsets" in plugin.params else "xyzOffset"),
-                             rpy_offset=_triple(plugin, "rpyOffsets" if "rpyOffsets" in plugin.params else "rpyOffset"),
-                             robot_namespace=_text(plugin, "robotNamespace", ""))
+    return GroundTruthConfig(
+        body=body,
+        topic=_text(plugin, "topicName", "ground_truth"),
+        frame=_text(plugin, "frameName", "world"),
+        update_rate=_number(plugin, "updateRate", 0.0),
+        gaussian_noise=_number(plugin, "gaussianNoise", 0.0),
+        xyz_offset=_triple(plugin, "xyzOffsets" if "xyzOffsets" in plugin.params else "xyzOffset"),
+        rpy_offset=_triple(plugin, "rpyOffsets" if "rpyOffsets" in plugin.params else "rpyOffset"),
+        robot_namespace=_text(plugin, "robotNamespace", ""),
+    )
 
 
 def joint_states(plugin: GazeboPlugin) -> JointStatesConfig:
     joints = [name.strip() for name in _text(plugin, "jointName", "").split(",") if name.strip()]
     if not joints:
         raise ModelError(f"{plugin.filename} needs <jointName> (comma-separated joint names)")
-    return JointStatesConfig(joints=joints, update_rate=_number(plugin, "updateRate", 100.0),
-                             robot_namespace=_text(plugin, "robotNamespace", ""))
+    return JointStatesConfig(
+        joints=joints,
+        update_rate=_number(plugin, "updateRate", 100.0),
+        robot_namespace=_text(plugin, "robotNamespace", ""),
+    )
 
 
-def read_plugins(model_name: str, plugins: List[GazeboPlugin], overrides: Mapping[str, object],
-                 joint_names: List[str]) -> ModelPlugins:
+def read_plugins(
+    model_name: str, plugins: List[GazeboPlugin], overrides: Mapping[str, object], joint_names: List[str]
+) -> ModelPlugins:
     """Configs of the supported plugins of one model; ModelError for a supported plugin with bad values or
     joints the model does not have, a warning naming each unsupported plugin."""
     found = ModelPlugins()

@@ -22,6 +22,7 @@ from .ros_plugins import Periodic, model_interfaces, sim_stamp
 from .simulation import Simulation
 from .urdf_model import ModelError
 
+
 class SimulatorNode:
     """Owns the simulation, its clock and the ROS interfaces of the spawned robots."""
 
@@ -37,8 +38,15 @@ class SimulatorNode:
         self._clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
         self._tf = tf2_ros.TransformBroadcaster()
         self.interfaces: Dict[str, List[Periodic]] = {}
-        self.api = GazeboApi(self.sim, self.lock, self.add_interface, self._remove_interface, self._set_paused,
-                             lambda: self.paused, settings.model_states_rate)
+        self.api = GazeboApi(
+            self.sim,
+            self.lock,
+            self.add_interface,
+            self._remove_interface,
+            self._set_paused,
+            lambda: self.paused,
+            settings.model_states_rate,
+        )
 
     # --- models -------------------------------------------------------------------------------------------
     def add_interface(self, name: str, robot_namespace: str) -> None:
@@ -160,8 +168,10 @@ def main() -> int:
     if settings.spawn_model_name:
         urdf = rospy.get_param(settings.spawn_robot_description, None)
         if not isinstance(urdf, str):
-            rospy.logfatal("parameter %s holds no URDF to spawn model [%s]"
-                           % (rospy.resolve_name(settings.spawn_robot_description), settings.spawn_model_name))
+            rospy.logfatal(
+                "parameter %s holds no URDF to spawn model [%s]"
+                % (rospy.resolve_name(settings.spawn_robot_description), settings.spawn_model_name)
+            )
             return 1
         try:
             node.spawn_urdf(settings.spawn_model_name, urdf, settings.spawn_pose)

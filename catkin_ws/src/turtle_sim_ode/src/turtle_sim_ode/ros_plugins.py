@@ -21,8 +21,44 @@ from .settings import SimulatorSettings
 from .simulation import DiffDriveRobot, Simulation
 
 # Diagonal covariances as the Kobuki driver reports them: x, y and yaw measured, the rest unknown.
-ODOM_POSE_COVARIANCE = [0.1, 0, 0, 0, 0, 0, 0, 0.1, 0, 0, 0, 0, 0, 0, 1e6, 0, 0, 0,
-                        0, 0, 0, 1e6, 0, 0, 0, 0, 0, 0, 1e6, 0, 0, 0, 0, 0, 0, 0.05]
+ODOM_POSE_COVARIANCE = [
+    0.1,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0.1,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    1e6,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    1e6,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    1e6,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0,
+    0.05,
+]
 ODOM_TWIST_COVARIANCE = ODOM_POSE_COVARIANCE
 Vec3 = Tuple[float, float, float]
 
@@ -76,8 +112,15 @@ class DriveInterface(Periodic):
     """A drive plugin's topics: velocity commands (and reset for the Kobuki) in; odometry, tf and wheel
     joint states out, with one stamp."""
 
-    def __init__(self, name: str, robot: DiffDriveRobot, settings: SimulatorSettings,
-                 tf_broadcaster: tf2_ros.TransformBroadcaster, sim: Simulation, namespace: str) -> None:
+    def __init__(
+        self,
+        name: str,
+        robot: DiffDriveRobot,
+        settings: SimulatorSettings,
+        tf_broadcaster: tf2_ros.TransformBroadcaster,
+        sim: Simulation,
+        namespace: str,
+    ) -> None:
         config = robot.config
         super().__init__(1.0 / (config.update_rate or settings.publish_rate))
         self.name = name
@@ -101,8 +144,11 @@ class DriveInterface(Periodic):
 
     def _on_velocity(self, twist: Twist) -> None:
         if not self.robot.drive.set_command(twist.linear.x, twist.angular.z, self._sim.sim_time):
-            rospy.logwarn_throttle(5.0, "%s: velocity command ignored, not finite: linear.x [%s] angular.z [%s]"
-                                   % (self.name, twist.linear.x, twist.angular.z))
+            rospy.logwarn_throttle(
+                5.0,
+                "%s: velocity command ignored, not finite: linear.x [%s] angular.z [%s]"
+                % (self.name, twist.linear.x, twist.angular.z),
+            )
 
     def _on_reset(self, _msg: EmptyMsg) -> None:
         self._reset_requested = True  # applied in the simulation thread, between steps
@@ -173,8 +219,18 @@ class GroundTruthPublisher(Periodic):
     p3d (`twist_in_body` false) gives the twist in the world frame as gazebo_ros_p3d does; the simulator's own
     ground truth gives it in the body frame, as nav_msgs/Odometry asks."""
 
-    def __init__(self, model: BuiltModel, link: str, topic: str, frame: str, rate: float, twist_in_body: bool,
-                 noise: float = 0.0, xyz_offset: Vec3 = (0.0, 0.0, 0.0), rpy_offset: Vec3 = (0.0, 0.0, 0.0)) -> None:
+    def __init__(
+        self,
+        model: BuiltModel,
+        link: str,
+        topic: str,
+        frame: str,
+        rate: float,
+        twist_in_body: bool,
+        noise: float = 0.0,
+        xyz_offset: Vec3 = (0.0, 0.0, 0.0),
+        rpy_offset: Vec3 = (0.0, 0.0, 0.0),
+    ) -> None:
         super().__init__(1.0 / rate)
         self._model = model
         self._link = link
@@ -187,11 +243,20 @@ class GroundTruthPublisher(Periodic):
         self._pub = rospy.Publisher(topic, Odometry, queue_size=10)
 
     @classmethod
-    def from_p3d(cls, model: BuiltModel, link: str, config: GroundTruthConfig, namespace: str,
-                 default_rate: float) -> "GroundTruthPublisher":
-        return cls(model, link, topic_prefix(namespace or config.robot_namespace) + config.topic, config.frame,
-                   config.update_rate or default_rate, False, config.gaussian_noise, config.xyz_offset,
-                   config.rpy_offset)
+    def from_p3d(
+        cls, model: BuiltModel, link: str, config: GroundTruthConfig, namespace: str, default_rate: float
+    ) -> "GroundTruthPublisher":
+        return cls(
+            model,
+            link,
+            topic_prefix(namespace or config.robot_namespace) + config.topic,
+            config.frame,
+            config.update_rate or default_rate,
+            False,
+            config.gaussian_noise,
+            config.xyz_offset,
+            config.rpy_offset,
+        )
 
     def _noisy(self, values: Sequence[float]) -> Vec3:
         if not self._noise:
@@ -210,7 +275,8 @@ class GroundTruthPublisher(Periodic):
         truth.child_frame_id = self._link
         pose = truth.pose.pose
         pose.position.x, pose.position.y, pose.position.z = self._noisy(
-            (px + self._offset[0], py + self._offset[1], pz + self._offset[2]))
+            (px + self._offset[0], py + self._offset[1], pz + self._offset[2])
+        )
         pose.orientation = Quaternion(ox, oy, oz, ow)
         if self._twist_in_body:
             linear, angular = rotate_inverse((x, y, z, w), linear), rotate_inverse((x, y, z, w), angular)
@@ -230,8 +296,9 @@ class JointStatePublisher(Periodic):
         super().__init__(1.0 / config.update_rate if config.update_rate else 0.0)
         self._handles = [model.joint(name) for name in config.joints]
         self._names = list(config.joints)
-        self._pub = rospy.Publisher(topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState,
-                                    queue_size=10)
+        self._pub = rospy.Publisher(
+            topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState, queue_size=10
+        )
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         joints = JointState()
@@ -245,8 +312,13 @@ class JointStatePublisher(Periodic):
         self._pub.unregister()
 
 
-def model_interfaces(name: str, sim: Simulation, settings: SimulatorSettings,
-                     tf_broadcaster: tf2_ros.TransformBroadcaster, namespace: str) -> List[Periodic]:
+def model_interfaces(
+    name: str,
+    sim: Simulation,
+    settings: SimulatorSettings,
+    tf_broadcaster: tf2_ros.TransformBroadcaster,
+    namespace: str,
+) -> List[Periodic]:
     """Every ROS publisher and subscriber the plugins of model `name` ask for (call under the world lock)."""
     model = sim.models[name]
     interfaces: List[Periodic] = []
@@ -256,8 +328,16 @@ def model_interfaces(name: str, sim: Simulation, settings: SimulatorSettings,
         if robot.config.filename.endswith("kobuki.so"):
             # turtlebot_gazebo's ground-truth odometry of the base, under the node's parameters.
             base = settings.base_frame if settings.base_frame in model.links else model.root_link
-            interfaces.append(GroundTruthPublisher(model, base, topic_prefix(namespace) + settings.ground_truth_topic,
-                                                   settings.ground_truth_frame, settings.publish_rate, True))
+            interfaces.append(
+                GroundTruthPublisher(
+                    model,
+                    base,
+                    topic_prefix(namespace) + settings.ground_truth_topic,
+                    settings.ground_truth_frame,
+                    settings.publish_rate,
+                    True,
+                )
+            )
     plugins = sim.plugins.get(name)
     if plugins is not None:
         for config in plugins.ground_truths:

@@ -16,10 +16,32 @@ import defusedxml
 import defusedxml.ElementTree as SafeET
 
 from .model_builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
-from .urdf_model import (MAX_JOINTS, MAX_LINKS, MAX_URDF_CHARS, MESH_PLACEHOLDER_EDGE, Box, Collision,
-                         Cylinder, GazeboPlugin, GazeboSurface, Geometry, Inertial, Joint, JointDynamics,
-                         JointLimits, Link, ModelError, Pose, RobotModel, Sphere, Vec3, _find_root,
-                         _is_positive_definite, _number, _vec3)
+from .urdf_model import (
+    MAX_JOINTS,
+    MAX_LINKS,
+    MAX_URDF_CHARS,
+    MESH_PLACEHOLDER_EDGE,
+    Box,
+    Collision,
+    Cylinder,
+    GazeboPlugin,
+    GazeboSurface,
+    Geometry,
+    Inertial,
+    Joint,
+    JointDynamics,
+    JointLimits,
+    Link,
+    ModelError,
+    Pose,
+    RobotModel,
+    Sphere,
+    Vec3,
+    _find_root,
+    _is_positive_definite,
+    _number,
+    _vec3,
+)
 
 if TYPE_CHECKING:
     from .physics import PhysicsParams
@@ -37,12 +59,16 @@ UNLIMITED = 1e16
 # thick enough that nothing tunnels through it in a step, and no ODE plane (an infinite
 # half-space) that would also catch everything below it.
 PLANE_THICKNESS = 0.1
-SURFACE_PATHS = {"mu1": "friction/ode/mu", "mu2": "friction/ode/mu2", "kp": "contact/ode/kp",
-                 "kd": "contact/ode/kd", "max_vel": "contact/ode/max_vel",
-                 "min_depth": "contact/ode/min_depth"}
+SURFACE_PATHS = {
+    "mu1": "friction/ode/mu",
+    "mu2": "friction/ode/mu2",
+    "kp": "contact/ode/kp",
+    "kd": "contact/ode/kd",
+    "max_vel": "contact/ode/max_vel",
+    "min_depth": "contact/ode/min_depth",
+}
 # <world> children that change nothing the simulator models.
-SILENT_WORLD_TAGS = ("light", "scene", "gui", "atmosphere", "spherical_coordinates",
-                     "magnetic_field", "wind", "audio")
+SILENT_WORLD_TAGS = ("light", "scene", "gui", "atmosphere", "spherical_coordinates", "magnetic_field", "wind", "audio")
 GROUND_PLANE_URI = "model://ground_plane"
 SUN_URI = "model://sun"
 # Gazebo's own inline copy of its ground plane (worlds saved from the GUI contain one).
@@ -67,10 +93,16 @@ class SdfPhysics:
     def apply(self, params: PhysicsParams) -> PhysicsParams:
         """A copy of ``params`` with the values this world sets (real-time pacing is the
         caller's); ModelError if they are out of range."""
-        given = {"time_step": self.max_step_size, "solver": self.solver,
-                 "solver_iterations": self.iterations, "cfm": self.cfm, "erp": self.erp,
-                 "contact_max_correcting_vel": self.contact_max_correcting_vel,
-                 "contact_surface_layer": self.contact_surface_layer, "gravity": self.gravity}
+        given = {
+            "time_step": self.max_step_size,
+            "solver": self.solver,
+            "solver_iterations": self.iterations,
+            "cfm": self.cfm,
+            "erp": self.erp,
+            "contact_max_correcting_vel": self.contact_max_correcting_vel,
+            "contact_surface_layer": self.contact_surface_layer,
+            "gravity": self.gravity,
+        }
         result = replace(params, **{k: v for k, v in given.items() if v is not None})
         try:
             result.validate()
@@ -175,8 +207,9 @@ def _pose(element: Element, what: str) -> Pose:
         return Pose()
     for attribute in ("relative_to", "frame"):
         if pose.get(attribute):
-            raise ModelError(f"{what} <pose {attribute}='{pose.get(attribute)}'>: only poses "
-                             f"in the default frame are supported")
+            raise ModelError(
+                f"{what} <pose {attribute}='{pose.get(attribute)}'>: only poses " f"in the default frame are supported"
+            )
     parts = (pose.text or "").split()
     if not parts:
         return Pose()
@@ -187,8 +220,11 @@ def _pose(element: Element, what: str) -> Pose:
 
 
 def _plugin(element: Element, what: str) -> GazeboPlugin:
-    return GazeboPlugin(_required(element, "filename", f"{what} <plugin>"), element.get("name", ""),
-                        {child.tag: (child.text or "").strip() for child in element})
+    return GazeboPlugin(
+        _required(element, "filename", f"{what} <plugin>"),
+        element.get("name", ""),
+        {child.tag: (child.text or "").strip() for child in element},
+    )
 
 
 def _parse_xml(text: str) -> Element:
@@ -199,8 +235,7 @@ def _parse_xml(text: str) -> Element:
     except ParseError as error:
         line, column = error.position
         reason = str(error).split(":")[0]  # expat appends the position we report ourselves
-        raise ModelError(f"SDF is not well-formed XML at line {line}, column {column}: "
-                         f"{reason}") from None
+        raise ModelError(f"SDF is not well-formed XML at line {line}, column {column}: " f"{reason}") from None
     except defusedxml.DefusedXmlException as error:
         raise ModelError(f"SDF rejected by the XML guard: {error}") from None
 
@@ -220,14 +255,15 @@ def _version(sdf: Element) -> Version:
 def _parse_inertial(element: Optional[Element], link: str, warnings: List[str]) -> Inertial:
     what = f"link '{link}' <inertial>"
     if element is None:
-        warnings.append(f"link '{link}' has no <inertial>: SDF's default mass 1 kg and "
-                        f"inertia 1 kg m^2 are used")
+        warnings.append(f"link '{link}' has no <inertial>: SDF's default mass 1 kg and " f"inertia 1 kg m^2 are used")
         return Inertial(1.0, Pose(), 1.0, 0.0, 0.0, 1.0, 0.0, 1.0)
     mass = _float(element, "mass", what, 1.0)
     if mass <= 0:
         raise ModelError(f"{what}: mass must be > 0, got {mass}")
-    values = {k: _float(element, f"inertia/{k}", what, 1.0 if k in ("ixx", "iyy", "izz") else 0.0)
-              for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    values = {
+        k: _float(element, f"inertia/{k}", what, 1.0 if k in ("ixx", "iyy", "izz") else 0.0)
+        for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+    }
     result = Inertial(mass, _pose(element, what), **values)
     if not _is_positive_definite(result.matrix()):
         raise ModelError(f"{what}: inertia matrix is not positive definite ({values})")
@@ -251,8 +287,9 @@ def _plane_to_z(normal: Vec3) -> Quat:
     return (w / norm, x / norm, y / norm, 0.0)
 
 
-def _parse_geometry(element: Optional[Element], what: str, static: bool,
-                    warnings: List[str]) -> Tuple[Geometry, Transform]:
+def _parse_geometry(
+    element: Optional[Element], what: str, static: bool, warnings: List[str]
+) -> Tuple[Geometry, Transform]:
     """The shape and where it sits in the collision frame."""
     identity: Transform = ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
     shape = None if element is None else next(iter(element), None)
@@ -265,8 +302,7 @@ def _parse_geometry(element: Optional[Element], what: str, static: bool,
             raise ModelError(f"{what} <size> must be > 0, got {size}")
         return Box(size), identity
     if shape.tag == "cylinder":
-        return (Cylinder(_positive(shape, "radius", what, 0.5), _positive(shape, "length", what, 1.0)),
-                identity)
+        return (Cylinder(_positive(shape, "radius", what, 0.5), _positive(shape, "length", what, 1.0)), identity)
     if shape.tag == "sphere":
         return Sphere(_positive(shape, "radius", what, 1.0)), identity
     if shape.tag == "plane":
@@ -284,15 +320,19 @@ def _parse_geometry(element: Optional[Element], what: str, static: bool,
         if min(sx, sy) <= 0:
             raise ModelError(f"{what} <size> must be > 0, got {sx} {sy}")
         half = PLANE_THICKNESS / 2
-        return (Box((sx, sy, PLANE_THICKNESS)),
-                ((-half * normal[0], -half * normal[1], -half * normal[2]), _plane_to_z(normal)))
+        return (
+            Box((sx, sy, PLANE_THICKNESS)),
+            ((-half * normal[0], -half * normal[1], -half * normal[2]), _plane_to_z(normal)),
+        )
     if shape.tag == "mesh":
         scale = _vec3(_text(shape, "scale"), f"{what} <scale>", (1.0, 1.0, 1.0))
         size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
         if min(size) <= 0:
             raise ModelError(f"{what} <scale> must not be zero, got {scale}")
-        warnings.append(f"{what}: mesh '{_text(shape, 'uri') or ''}' is not loaded; colliding "
-                        f"with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead")
+        warnings.append(
+            f"{what}: mesh '{_text(shape, 'uri') or ''}' is not loaded; colliding "
+            f"with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead"
+        )
         return Box(size), identity  # type: ignore[arg-type]
     raise ModelError(f"{what}: unsupported geometry")
 
@@ -315,28 +355,30 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
     for flag, normal in (("kinematic", False), ("gravity", True)):
         if not static and _bool(element, flag, what, normal) != normal:
             model.warnings.append(f"{what}: <{flag}> is not supported, ignored")
-    link = Link(name, None if static else
-                _parse_inertial(element.find("inertial"), name, model.warnings))
+    link = Link(name, None if static else _parse_inertial(element.find("inertial"), name, model.warnings))
     surface: Dict[str, float] = {}
     for index, collision in enumerate(element.findall("collision")):
         collision_name = collision.get("name") or f"{name}_collision_{index}"
         where = f"{what} collision '{collision_name}'"
         geometry, offset = _parse_geometry(collision.find("geometry"), where, static, model.warnings)
-        link.collisions.append(Collision(
-            collision_name, _as_pose(compose(pose_transform(_pose(collision, where)), offset)),
-            geometry))
+        link.collisions.append(
+            Collision(collision_name, _as_pose(compose(pose_transform(_pose(collision, where)), offset)), geometry)
+        )
         values = _parse_surface(collision.find("surface"), where)
         if any(surface.get(key, value) != value for key, value in values.items()):
-            model.warnings.append(f"{what}: its collisions have different <surface> values; "
-                                  f"the link gets one surface, the last collision's values win")
+            model.warnings.append(
+                f"{what}: its collisions have different <surface> values; "
+                f"the link gets one surface, the last collision's values win"
+            )
         surface.update(values)
     if surface:
         model.surfaces[name] = GazeboSurface(**surface)
     return link, _pose(element, what)
 
 
-def _axis(element: Element, what: str, version: Version, joint_in_model: Transform,
-          link_poses: Dict[str, Transform]) -> Vec3:
+def _axis(
+    element: Element, what: str, version: Version, joint_in_model: Transform, link_poses: Dict[str, Transform]
+) -> Vec3:
     """The unit joint axis in the joint frame, whatever frame the SDF version writes it in."""
     xyz = _vec3(_text(element, "xyz"), f"{what} <axis><xyz>", (0.0, 0.0, 1.0))
     norm = math.sqrt(sum(a * a for a in xyz))
@@ -359,14 +401,12 @@ def _axis(element: Element, what: str, version: Version, joint_in_model: Transfo
     elif frame in link_poses:
         in_model = quat_rotate(link_poses[frame][1], xyz)
     else:
-        raise ModelError(f"{what} <xyz expressed_in='{frame}'>: only '__model__' and link names "
-                         f"are supported")
+        raise ModelError(f"{what} <xyz expressed_in='{frame}'>: only '__model__' and link names " f"are supported")
     w, x, y, z = joint_in_model[1]
     return quat_rotate((w, -x, -y, -z), in_model)
 
 
-def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Transform],
-                 warnings: List[str]) -> Joint:
+def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Transform], warnings: List[str]) -> Joint:
     name = _required(element, "name", "<joint>")
     what = f"joint '{name}'"
     joint_type = _required(element, "type", what)
@@ -376,8 +416,10 @@ def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Trans
     if parent is None or child is None:
         raise ModelError(f"{what}: needs <parent> and <child>")
     if parent == "world":
-        raise ModelError(f"{what}: joints to the world are not supported; make the model "
-                         f"<static> instead of fixing it to the world")
+        raise ModelError(
+            f"{what}: joints to the world are not supported; make the model "
+            f"<static> instead of fixing it to the world"
+        )
     for role, link in (("parent", parent), ("child", child)):
         if link not in link_poses:
             raise ModelError(f"{what}: {role} link '{link}' does not exist")
@@ -392,16 +434,24 @@ def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Trans
         axis = _axis(axis_element, what, version, joint_in_model, link_poses)
         limit = axis_element.find("limit")
         if limit is not None:
-            limits = JointLimits(*(_float(limit, key, what, default) for key, default in (
-                ("lower", -UNLIMITED), ("upper", UNLIMITED), ("effort", -1.0),
-                ("velocity", -1.0))))
+            limits = JointLimits(
+                *(
+                    _float(limit, key, what, default)
+                    for key, default in (
+                        ("lower", -UNLIMITED),
+                        ("upper", UNLIMITED),
+                        ("effort", -1.0),
+                        ("velocity", -1.0),
+                    )
+                )
+            )
             if limits.lower > limits.upper:
                 raise ModelError(f"{what}: limit lower {limits.lower} > upper {limits.upper}")
-        if joint_type == "revolute" and (
-                limits is None or (limits.lower <= -UNLIMITED and limits.upper >= UNLIMITED)):
+        if joint_type == "revolute" and (limits is None or (limits.lower <= -UNLIMITED and limits.upper >= UNLIMITED)):
             joint_type = "continuous"
-        dynamics = JointDynamics(_float(axis_element, "dynamics/damping", what, 0.0),
-                                 _float(axis_element, "dynamics/friction", what, 0.0))
+        dynamics = JointDynamics(
+            _float(axis_element, "dynamics/damping", what, 0.0), _float(axis_element, "dynamics/friction", what, 0.0)
+        )
         if _float(axis_element, "dynamics/spring_stiffness", what, 0.0) != 0.0:
             warnings.append(f"{what}: <spring_stiffness> is not supported, ignored")
     origin = _as_pose(compose(inverse(link_poses[parent]), link_poses[child]))
@@ -420,8 +470,10 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
     if not link_elements:
         raise ModelError(f"{what} has no <link>")
     if len(link_elements) > MAX_LINKS or len(joint_elements) > MAX_JOINTS:
-        raise ModelError(f"{what} too large: {len(link_elements)} links, {len(joint_elements)} "
-                         f"joints (limits {MAX_LINKS}, {MAX_JOINTS})")
+        raise ModelError(
+            f"{what} too large: {len(link_elements)} links, {len(joint_elements)} "
+            f"joints (limits {MAX_LINKS}, {MAX_JOINTS})"
+        )
     model = RobotModel(name, {}, {}, "", static=static)
     link_poses: Dict[str, Transform] = {}
     for link_element in link_elements:
@@ -439,14 +491,17 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
     roots = [link for link in model.links if link not in children]
     for free in roots[1:]:  # SDF links without a joint are free bodies
         model.joints[f"__free_{free}"] = Joint(
-            f"__free_{free}", "floating", roots[0], free,
-            _as_pose(compose(inverse(link_poses[roots[0]]), link_poses[free])))
+            f"__free_{free}",
+            "floating",
+            roots[0],
+            free,
+            _as_pose(compose(inverse(link_poses[roots[0]]), link_poses[free])),
+        )
     model.root = _find_root(model.links, model.joints)
     model.root_pose = _as_pose(link_poses[model.root])
     model.plugins.extend(_plugin(p, what) for p in element.findall("plugin"))
     if _bool(element, "self_collide", what, False):
-        model.warnings.append(f"{what}: <self_collide> is not applied; build it with "
-                              f"self_collide=True")
+        model.warnings.append(f"{what}: <self_collide> is not applied; build it with " f"self_collide=True")
     return model, _pose(element, what)
 
 
@@ -472,8 +527,10 @@ def parse_sdf_model(text: str) -> RobotModel:
 
 def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
     blocks = world.findall("physics")
-    chosen = next((b for b in blocks if b.get("default", "").lower() in ("true", "1")),
-                  blocks[0] if blocks else Element("physics"))
+    chosen = next(
+        (b for b in blocks if b.get("default", "").lower() in ("true", "1")),
+        blocks[0] if blocks else Element("physics"),
+    )
     what = "<physics>"
     if chosen.get("type", "ode") != "ode":
         warnings.append(f"<physics type='{chosen.get('type')}'>: only its ODE settings are read")
@@ -484,8 +541,7 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
         raise ModelError(f"{what} <ode><solver><type>: expected quick or world, got {solver!r}")
     iterations = _optional_float(chosen, "ode/solver/iters", what)
     if iterations is not None and (iterations != int(iterations) or iterations < 1):
-        raise ModelError(f"{what} <ode><solver><iters>: expected a positive integer, "
-                         f"got {iterations}")
+        raise ModelError(f"{what} <ode><solver><iters>: expected a positive integer, " f"got {iterations}")
     step = _optional_float(chosen, "max_step_size", what)
     if step is not None and step <= 0:
         raise ModelError(f"{what} <max_step_size> must be > 0, got {step}")
@@ -497,10 +553,10 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
         iterations=None if iterations is None else int(iterations),
         cfm=_optional_float(chosen, "ode/constraints/cfm", what),
         erp=_optional_float(chosen, "ode/constraints/erp", what),
-        contact_max_correcting_vel=_optional_float(
-            chosen, "ode/constraints/contact_max_correcting_vel", what),
+        contact_max_correcting_vel=_optional_float(chosen, "ode/constraints/contact_max_correcting_vel", what),
         contact_surface_layer=_optional_float(chosen, "ode/constraints/contact_surface_layer", what),
-        gravity=None if gravity_text is None else _vec3(gravity_text, "<gravity>", (0.0, 0.0, 0.0)))
+        gravity=None if gravity_text is None else _vec3(gravity_text, "<gravity>", (0.0, 0.0, 0.0)),
+    )
 
 
 def parse_sdf_world(text: str) -> World:
@@ -514,8 +570,7 @@ def parse_sdf_world(text: str) -> World:
         raise ModelError(f"expected one <world> in <sdf>, found {len(worlds)}")
     element = worlds[0]
     warnings: List[str] = []
-    world = World(element.get("name", "default"), _parse_physics(element, warnings),
-                  warnings=warnings)
+    world = World(element.get("name", "default"), _parse_physics(element, warnings), warnings=warnings)
     names: Set[str] = set()
     for child in element:
         if child.tag == "model":
@@ -542,14 +597,18 @@ def parse_sdf_world(text: str) -> World:
                         raise ModelError(f"two models are named '{name}'")
                     names.add(name)
                 static = _text(child, "static")
-                world.includes.append(Include(
-                    uri, name, _pose(child, f"<include> '{uri}'"),
-                    None if static is None else _bool(child, "static", f"<include> '{uri}'", False)))
+                world.includes.append(
+                    Include(
+                        uri,
+                        name,
+                        _pose(child, f"<include> '{uri}'"),
+                        None if static is None else _bool(child, "static", f"<include> '{uri}'", False),
+                    )
+                )
         elif child.tag == "plugin":
             world.plugins.append(_plugin(child, "<world>"))
         elif child.tag not in SILENT_WORLD_TAGS + ("physics", "gravity"):
             warnings.append(f"<world> <{child.tag}> is not supported, ignored")
     if not world.ground_plane:
-        warnings.append("the world has no ground_plane; the simulator's ground at z=0 is "
-                        "there anyway")
+        warnings.append("the world has no ground_plane; the simulator's ground at z=0 is " "there anyway")
     return world

@@ -8,11 +8,26 @@ from typing import Any, Dict, Mapping, Tuple
 from .physics import PhysicsParams
 
 # Parameters of physics.yaml, read into PhysicsParams (checked again by PhysicsParams.validate()).
-PHYSICS_PARAMS = ("time_step", "solver", "solver_iterations", "gravity", "erp", "cfm", "max_contacts",
-                  "contact_max_correcting_vel", "contact_surface_layer")
+PHYSICS_PARAMS = (
+    "time_step",
+    "solver",
+    "solver_iterations",
+    "gravity",
+    "erp",
+    "cfm",
+    "max_contacts",
+    "contact_max_correcting_vel",
+    "contact_surface_layer",
+)
 # Overrides of the drive plugin's values, under ~diff_drive/ (names of DiffDriveParams).
-DRIVE_OVERRIDES = ("max_wheel_torque", "max_wheel_acceleration", "max_linear", "max_angular", "cmd_timeout",
-                   "odometry_integration")
+DRIVE_OVERRIDES = (
+    "max_wheel_torque",
+    "max_wheel_acceleration",
+    "max_linear",
+    "max_angular",
+    "cmd_timeout",
+    "odometry_integration",
+)
 
 
 class SettingsError(ValueError):
@@ -40,8 +55,9 @@ class SimulatorSettings:
     drive_overrides: Dict[str, Any] = field(default_factory=dict)
 
 
-def _number(params: Mapping[str, Any], name: str, default: float, minimum: float = -math.inf,
-            exclusive: bool = False) -> float:
+def _number(
+    params: Mapping[str, Any], name: str, default: float, minimum: float = -math.inf, exclusive: bool = False
+) -> float:
     value = params.get(name, default)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise SettingsError(f"parameter ~{name} must be a finite number, got [{value!r}]")
@@ -113,11 +129,17 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
         physics=_physics(params),
         drive_overrides=_drive_overrides(params),
     )
-    for name in ("world_name", "odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame",
-                 "spawn_model_name", "spawn_robot_description"):
+    for name in (
+        "world_name",
+        "odom_frame",
+        "base_frame",
+        "ground_truth_topic",
+        "ground_truth_frame",
+        "spawn_model_name",
+        "spawn_robot_description",
+    ):
         setattr(settings, name, _typed(params, name, getattr(defaults, name), str))
     for name in ("odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame"):
         if not getattr(settings, name):
             raise SettingsError(f"parameter ~{name} must not be empty")
     return settings
-

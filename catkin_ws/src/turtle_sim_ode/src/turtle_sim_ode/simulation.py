@@ -12,8 +12,7 @@ from .physics import PhysicsParams, PhysicsWorld
 from .plugins import DriveConfig, ModelPlugins, read_plugins
 from .sdf_model import World, _rpy, parse_sdf_model
 from .urdf_model import ModelError, RobotModel, parse_urdf
-from .world_control import (SCOPE, WORLD_FRAMES, Load, QuatXYZW, WorldControl, WorldError, update_rate,
-                            vector)
+from .world_control import SCOPE, WORLD_FRAMES, Load, QuatXYZW, WorldControl, WorldError, update_rate, vector
 
 Pose6 = Tuple[float, float, float, float, float, float]
 # (x, y, z, roll, pitch, yaw), or (position, quaternion (x, y, z, w)) as in geometry_msgs/Pose.
@@ -60,24 +59,27 @@ class _Spawned:
             if frame.body is not None and id(frame.body) not in bodies:
                 bodies.add(id(frame.body))
                 link_poses[link] = model.link_transform(link)
-        return cls(model.model_transform(), link_poses,
-                   {name: handle.angle() for name, handle in model.joints.items()})
+        return cls(model.model_transform(), link_poses, {name: handle.angle() for name, handle in model.joints.items()})
 
 
 class Simulation(WorldControl):
     """Models by name in one physics world, stepped with their drives and scheduled loads."""
 
-    def __init__(self, physics_params: Optional[PhysicsParams] = None,
-                 drive_overrides: Optional[Mapping[str, object]] = None,
-                 max_update_rate: Optional[float] = None) -> None:
+    def __init__(
+        self,
+        physics_params: Optional[PhysicsParams] = None,
+        drive_overrides: Optional[Mapping[str, object]] = None,
+        max_update_rate: Optional[float] = None,
+    ) -> None:
         """``max_update_rate``: steps per wall second the node should pace to (Gazebo's
         real_time_update_rate; 0 = as fast as possible); default: real time."""
         self.physics = PhysicsWorld(physics_params)
         self.models: Dict[str, BuiltModel] = {}
         self.robots: Dict[str, DiffDriveRobot] = {}
         self.plugins: Dict[str, ModelPlugins] = {}  # what each model's plugin tags ask of the ROS side
-        self.max_update_rate = (1.0 / self.physics.time_step if max_update_rate is None
-                                else update_rate(max_update_rate, "max_update_rate"))
+        self.max_update_rate = (
+            1.0 / self.physics.time_step if max_update_rate is None else update_rate(max_update_rate, "max_update_rate")
+        )
         self.loads: List[Load] = []
         self._drive_overrides = dict(drive_overrides or {})
         self._spawned: Dict[str, _Spawned] = {}
@@ -92,8 +94,9 @@ class Simulation(WorldControl):
         return self.max_update_rate * self.physics.time_step
 
     # --- models ---------------------------------------------------------------------------
-    def spawn_model(self, name: str, robot: RobotModel, pose: SpawnPose = (0, 0, 0, 0, 0, 0),
-                    reference_frame: str = "") -> List[str]:
+    def spawn_model(
+        self, name: str, robot: RobotModel, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
+    ) -> List[str]:
         """Build ``robot`` as model ``name`` with its model frame at ``pose`` relative to
         ``reference_frame`` (see world_control); return warnings.
 
@@ -112,8 +115,10 @@ class Simulation(WorldControl):
         try:
             plugins = read_plugins(name, robot.plugins, self._drive_overrides, list(model.joints))
             if len(plugins.drives) > 1:
-                warnings.append(f"model has {len(plugins.drives)} drive plugins: only the first "
-                                f"({plugins.drives[0].filename}) is used")
+                warnings.append(
+                    f"model has {len(plugins.drives)} drive plugins: only the first "
+                    f"({plugins.drives[0].filename}) is used"
+                )
             if plugins.drives:
                 self.robots[name] = DiffDriveRobot(model, plugins.drives[0])
                 self.robots[name].reset_odometry(self.sim_time)
@@ -137,19 +142,20 @@ class Simulation(WorldControl):
         elif size == 2:
             given = (pose[0], pose[1])  # type: ignore[assignment]
         else:
-            raise WorldError(f"pose must be (x, y, z, roll, pitch, yaw) or (position, quaternion), "
-                             f"got {pose!r}")
+            raise WorldError(f"pose must be (x, y, z, roll, pitch, yaw) or (position, quaternion), " f"got {pose!r}")
         (x, y, z), (qx, qy, qz, qw) = self.to_world(reference_frame, *given)
         roll, pitch, yaw = _rpy((qw, qx, qy, qz))
         return (x, y, z, roll, pitch, yaw)
 
-    def spawn_urdf(self, name: str, urdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0),
-                   reference_frame: str = "") -> List[str]:
+    def spawn_urdf(
+        self, name: str, urdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
+    ) -> List[str]:
         """Parse a URDF and ``spawn_model`` it (ModelError if it is bad)."""
         return self.spawn_model(name, parse_urdf(urdf), pose, reference_frame)
 
-    def spawn_sdf(self, name: str, sdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0),
-                  reference_frame: str = "") -> List[str]:
+    def spawn_sdf(
+        self, name: str, sdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
+    ) -> List[str]:
         """Parse an SDF <model> and ``spawn_model`` it; its own <pose> is not applied."""
         return self.spawn_model(name, parse_sdf_model(sdf), pose, reference_frame)
 
@@ -175,8 +181,10 @@ class Simulation(WorldControl):
         warnings = list(world.warnings)
         try:
             for entry in world.models:
-                warnings.extend(f"model '{entry.name}': {warning}" for warning in
-                                self.spawn_model(entry.name, entry.model, entry.spawn_pose))
+                warnings.extend(
+                    f"model '{entry.name}': {warning}"
+                    for warning in self.spawn_model(entry.name, entry.model, entry.spawn_pose)
+                )
         except Exception:
             for name in list(self.models):
                 self.delete(name)
@@ -186,8 +194,9 @@ class Simulation(WorldControl):
         for include in world.includes:
             named = f" (model '{include.name}')" if include.name else ""
             warnings.append(f"cannot resolve {include.uri}{named}: not spawned")
-        warnings.extend(f"world plugin {plugin.filename} ({plugin.name}) is not supported: ignored"
-                        for plugin in world.plugins)
+        warnings.extend(
+            f"world plugin {plugin.filename} ({plugin.name}) is not supported: ignored" for plugin in world.plugins
+        )
         return warnings
 
     def delete(self, name: str) -> None:

@@ -16,13 +16,18 @@ def quaternion_from_rpy(roll: float, pitch: float, yaw: float) -> Quaternion:
     cr, sr = math.cos(roll / 2), math.sin(roll / 2)
     cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
     cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return Quaternion(sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy,
-                      cr * cp * cy + sr * sp * sy)
+    return Quaternion(
+        sr * cp * cy - cr * sp * sy,
+        cr * sp * cy + sr * cp * sy,
+        cr * cp * sy - sr * sp * cy,
+        cr * cp * cy + sr * sp * sy,
+    )
 
 
 def parse_args(argv: List[str]) -> argparse.Namespace:
-    parser = argparse.ArgumentParser(prog="spawn_model", description="Spawn a model into the simulator "
-                                     "(gazebo_ros spawn_model compatible).")
+    parser = argparse.ArgumentParser(
+        prog="spawn_model", description="Spawn a model into the simulator " "(gazebo_ros spawn_model compatible)."
+    )
     kind = parser.add_mutually_exclusive_group(required=True)
     kind.add_argument("-urdf", action="store_true", help="the model is URDF")
     kind.add_argument("-sdf", action="store_true", help="the model is SDF")
@@ -38,11 +43,23 @@ def parse_args(argv: List[str]) -> argparse.Namespace:
     parser.add_argument("-unpause", action="store_true", help="unpause physics after spawning")
     parser.add_argument("-wait", metavar="MODEL", help="wait for this model to exist before spawning")
     parser.add_argument("-timeout", type=float, default=30.0, help="seconds to wait for the services (default 30)")
-    for axis, help_text in (("x", "m"), ("y", "m"), ("z", "m"), ("R", "roll, rad"), ("P", "pitch, rad"),
-                            ("Y", "yaw, rad")):
+    for axis, help_text in (
+        ("x", "m"),
+        ("y", "m"),
+        ("z", "m"),
+        ("R", "roll, rad"),
+        ("P", "pitch, rad"),
+        ("Y", "yaw, rad"),
+    ):
         parser.add_argument("-" + axis, type=float, default=0.0, help="initial pose: %s" % help_text)
-    parser.add_argument("-J", nargs=2, action="append", default=[], metavar=("JOINT", "POSITION"),
-                        help="initial joint position (repeatable)")
+    parser.add_argument(
+        "-J",
+        nargs=2,
+        action="append",
+        default=[],
+        metavar=("JOINT", "POSITION"),
+        help="initial joint position (repeatable)",
+    )
     parser.add_argument("-package_to_model", action="store_true", help="accepted; meshes are not loaded anyway")
     parser.add_argument("-b", dest="bond", action="store_true", help="delete the model when this node exits")
     args = parser.parse_args(argv)

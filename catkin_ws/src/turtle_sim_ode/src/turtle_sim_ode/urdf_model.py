@@ -17,8 +17,7 @@ MAX_URDF_CHARS = 10_000_000
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
 # Stand-in for a mesh collision: mesh files are never opened, so their size is unknown.
 MESH_PLACEHOLDER_EDGE = 0.01
-SURFACE_TAGS = {"mu1": "mu1", "mu2": "mu2", "kp": "kp", "kd": "kd",
-                "maxVel": "max_vel", "minDepth": "min_depth"}
+SURFACE_TAGS = {"mu1": "mu1", "mu2": "mu2", "kp": "kp", "kd": "kd", "maxVel": "max_vel", "minDepth": "min_depth"}
 
 
 class ModelError(ValueError):
@@ -45,9 +44,7 @@ class Inertial:
     izz: float
 
     def matrix(self) -> Tuple[Vec3, Vec3, Vec3]:
-        return ((self.ixx, self.ixy, self.ixz),
-                (self.ixy, self.iyy, self.iyz),
-                (self.ixz, self.iyz, self.izz))
+        return ((self.ixx, self.ixy, self.ixz), (self.ixy, self.iyy, self.iyz), (self.ixz, self.iyz, self.izz))
 
 
 @dataclass(frozen=True)
@@ -175,8 +172,10 @@ def _vec3(text: Optional[str], what: str, default: Vec3) -> Vec3:
 def _pose(element: Optional[Element], what: str) -> Pose:
     if element is None:
         return Pose()
-    return Pose(_vec3(element.get("xyz"), f"{what} origin xyz", (0.0, 0.0, 0.0)),
-                _vec3(element.get("rpy"), f"{what} origin rpy", (0.0, 0.0, 0.0)))
+    return Pose(
+        _vec3(element.get("xyz"), f"{what} origin xyz", (0.0, 0.0, 0.0)),
+        _vec3(element.get("rpy"), f"{what} origin rpy", (0.0, 0.0, 0.0)),
+    )
 
 
 def _required(element: Element, attribute: str, what: str) -> str:
@@ -195,9 +194,11 @@ def _positive(value: float, what: str) -> float:
 def _is_positive_definite(m: Tuple[Vec3, Vec3, Vec3]) -> bool:
     """Sylvester's criterion on a symmetric 3x3 matrix."""
     minor2 = m[0][0] * m[1][1] - m[0][1] * m[1][0]
-    det = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-           - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-           + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    det = (
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    )
     return m[0][0] > 0 and minor2 > 0 and det > 0
 
 
@@ -213,13 +214,14 @@ def _parse_inertial(element: Element, link: str) -> Inertial:
     inertia = element.find("inertia")
     if inertia is None:
         raise ModelError(f"{what}: missing <inertia>")
-    values = {k: _number(inertia.get(k, "0"), f"{what} {k}")
-              for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    values = {k: _number(inertia.get(k, "0"), f"{what} {k}") for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
     result = Inertial(mass, _pose(element.find("origin"), what), **values)
     if not _is_positive_definite(result.matrix()):
-        raise ModelError(f"{what}: inertia matrix is not positive definite "
-                         f"(ixx={values['ixx']}, iyy={values['iyy']}, izz={values['izz']}, "
-                         f"ixy={values['ixy']}, ixz={values['ixz']}, iyz={values['iyz']})")
+        raise ModelError(
+            f"{what}: inertia matrix is not positive definite "
+            f"(ixx={values['ixx']}, iyy={values['iyy']}, izz={values['izz']}, "
+            f"ixy={values['ixy']}, ixz={values['ixz']}, iyz={values['iyz']})"
+        )
     return result
 
 
@@ -233,20 +235,21 @@ def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) 
             _positive(value, f"{what} box size")
         return Box(size)
     if shape.tag == "cylinder":
-        return Cylinder(_positive(_number(shape.get("radius"), f"{what} cylinder radius"),
-                                  f"{what} cylinder radius"),
-                        _positive(_number(shape.get("length"), f"{what} cylinder length"),
-                                  f"{what} cylinder length"))
+        return Cylinder(
+            _positive(_number(shape.get("radius"), f"{what} cylinder radius"), f"{what} cylinder radius"),
+            _positive(_number(shape.get("length"), f"{what} cylinder length"), f"{what} cylinder length"),
+        )
     if shape.tag == "sphere":
-        return Sphere(_positive(_number(shape.get("radius"), f"{what} sphere radius"),
-                                f"{what} sphere radius"))
+        return Sphere(_positive(_number(shape.get("radius"), f"{what} sphere radius"), f"{what} sphere radius"))
     if shape.tag == "mesh":
         scale = _vec3(shape.get("scale"), f"{what} mesh scale", (1.0, 1.0, 1.0))
         size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
         for value in size:
             _positive(value, f"{what} mesh scale")
-        warnings.append(f"{what}: mesh '{shape.get('filename', '')}' is not loaded; "
-                        f"colliding with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead")
+        warnings.append(
+            f"{what}: mesh '{shape.get('filename', '')}' is not loaded; "
+            f"colliding with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead"
+        )
         return Box(size)  # type: ignore[arg-type]
     raise ModelError(f"{what}: unsupported geometry <{shape.tag}>")
 
@@ -257,10 +260,13 @@ def _parse_link(element: Element, warnings: List[str]) -> Link:
     link = Link(name, _parse_inertial(inertial, name) if inertial is not None else None)
     for index, collision in enumerate(element.findall("collision")):
         what = f"link '{name}' collision {collision.get('name') or index}"
-        link.collisions.append(Collision(
-            collision.get("name") or f"{name}_collision_{index}",
-            _pose(collision.find("origin"), what),
-            _parse_geometry(collision.find("geometry"), what, warnings)))
+        link.collisions.append(
+            Collision(
+                collision.get("name") or f"{name}_collision_{index}",
+                _pose(collision.find("origin"), what),
+                _parse_geometry(collision.find("geometry"), what, warnings),
+            )
+        )
     return link
 
 
@@ -274,8 +280,7 @@ def _parse_joint(element: Element) -> Joint:
     if parent is None or child is None:
         raise ModelError(f"{what}: needs <parent link=...> and <child link=...>")
     axis_element = element.find("axis")
-    axis = _vec3(None if axis_element is None else axis_element.get("xyz"), f"{what} axis",
-                 (1.0, 0.0, 0.0))
+    axis = _vec3(None if axis_element is None else axis_element.get("xyz"), f"{what} axis", (1.0, 0.0, 0.0))
     norm = math.sqrt(sum(a * a for a in axis))
     if joint_type != "fixed" and norm < 1e-9:
         raise ModelError(f"{what}: axis must not be zero")
@@ -283,22 +288,28 @@ def _parse_joint(element: Element) -> Joint:
     limits = None
     if limit is not None:
         limits = JointLimits(
-            *(_number(limit.get(k, "0"), f"{what} limit {k}")
-              for k in ("lower", "upper", "effort", "velocity")))
+            *(_number(limit.get(k, "0"), f"{what} limit {k}") for k in ("lower", "upper", "effort", "velocity"))
+        )
         if limits.lower > limits.upper:
             raise ModelError(f"{what}: limit lower {limits.lower} > upper {limits.upper}")
     elif joint_type in ("revolute", "prismatic"):
         raise ModelError(f"{what}: a {joint_type} joint needs <limit>")
     dynamics = element.find("dynamics")
     return Joint(
-        name, joint_type,
-        _required(parent, "link", f"{what} <parent>"), _required(child, "link", f"{what} <child>"),
+        name,
+        joint_type,
+        _required(parent, "link", f"{what} <parent>"),
+        _required(child, "link", f"{what} <child>"),
         _pose(element.find("origin"), what),
         tuple(a / norm for a in axis) if norm > 0 else axis,  # type: ignore[arg-type]
         limits,
-        JointDynamics() if dynamics is None else JointDynamics(
+        JointDynamics()
+        if dynamics is None
+        else JointDynamics(
             _number(dynamics.get("damping", "0"), f"{what} damping"),
-            _number(dynamics.get("friction", "0"), f"{what} friction")))
+            _number(dynamics.get("friction", "0"), f"{what} friction"),
+        ),
+    )
 
 
 def _tag_value(element: Element) -> Optional[str]:
@@ -311,16 +322,20 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
     reference = element.get("reference")
     if reference is None:
         for plugin in element.findall("plugin"):
-            model.plugins.append(GazeboPlugin(
-                _required(plugin, "filename", "<gazebo><plugin>"),
-                plugin.get("name", ""),
-                {child.tag: (child.text or "").strip() for child in plugin}))
+            model.plugins.append(
+                GazeboPlugin(
+                    _required(plugin, "filename", "<gazebo><plugin>"),
+                    plugin.get("name", ""),
+                    {child.tag: (child.text or "").strip() for child in plugin},
+                )
+            )
         return
     values = {}
     for child in element:
         if child.tag in SURFACE_TAGS:
             values[SURFACE_TAGS[child.tag]] = _number(
-                _tag_value(child), f"<gazebo reference='{reference}'> {child.tag}")
+                _tag_value(child), f"<gazebo reference='{reference}'> {child.tag}"
+            )
     if not values:
         return
     if reference not in model.links:
@@ -340,8 +355,9 @@ def _find_root(links: Dict[str, Link], joints: Dict[str, Joint]) -> str:
             if link not in links:
                 raise ModelError(f"joint '{joint.name}': {role} link '{link}' does not exist")
         if joint.child in parent_of:
-            raise ModelError(f"link '{joint.child}' has two parents: "
-                             f"'{parent_of[joint.child]}' and '{joint.parent}'")
+            raise ModelError(
+                f"link '{joint.child}' has two parents: " f"'{parent_of[joint.child]}' and '{joint.parent}'"
+            )
         if joint.parent == joint.child:
             raise ModelError(f"joint '{joint.name}' connects link '{joint.child}' to itself")
         parent_of[joint.child] = joint.parent
@@ -373,8 +389,7 @@ def parse_urdf(text: str) -> RobotModel:
     except ParseError as error:
         line, column = error.position
         reason = str(error).split(":")[0]  # expat appends the position we report ourselves
-        raise ModelError(f"URDF is not well-formed XML at line {line}, column {column}: "
-                         f"{reason}") from None
+        raise ModelError(f"URDF is not well-formed XML at line {line}, column {column}: " f"{reason}") from None
     except defusedxml.DefusedXmlException as error:
         raise ModelError(f"URDF rejected by the XML guard: {error}") from None
     if robot.tag != "robot":
@@ -384,8 +399,10 @@ def parse_urdf(text: str) -> RobotModel:
     if not link_elements:
         raise ModelError("URDF has no <link>")
     if len(link_elements) > MAX_LINKS or len(joint_elements) > MAX_JOINTS:
-        raise ModelError(f"model too large: {len(link_elements)} links, {len(joint_elements)} "
-                         f"joints (limits {MAX_LINKS}, {MAX_JOINTS})")
+        raise ModelError(
+            f"model too large: {len(link_elements)} links, {len(joint_elements)} "
+            f"joints (limits {MAX_LINKS}, {MAX_JOINTS})"
+        )
     warnings: List[str] = []
     links: Dict[str, Link] = {}
     for element in link_elements:

@@ -16,8 +16,18 @@ from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence,
 import ode
 
 from . import ode_constants as oc
-from .model_builder import (BuiltModel, JointHandle, Quat, Transform, Vec3, _rotated_inertia,
-                            compose, inverse, quat_multiply, quat_rotate)
+from .model_builder import (
+    BuiltModel,
+    JointHandle,
+    Quat,
+    Transform,
+    Vec3,
+    _rotated_inertia,
+    compose,
+    inverse,
+    quat_multiply,
+    quat_rotate,
+)
 from .physics import PhysicsWorld
 from .urdf_model import _is_positive_definite
 
@@ -46,10 +56,17 @@ SOR_PGS_W = 1.3
 TIME_EPSILON = 1e-9
 
 # gazebo_msgs/ODEJointProperties fields set with joint.setParam (first axis only).
-_JOINT_PARAMS = (("hiStop", oc.PARAM_HI_STOP), ("loStop", oc.PARAM_LO_STOP), ("erp", oc.PARAM_ERP),
-                 ("cfm", oc.PARAM_CFM), ("stop_erp", oc.PARAM_STOP_ERP),
-                 ("stop_cfm", oc.PARAM_STOP_CFM), ("fudge_factor", oc.PARAM_FUDGE_FACTOR),
-                 ("fmax", oc.PARAM_FMAX), ("vel", oc.PARAM_VEL))
+_JOINT_PARAMS = (
+    ("hiStop", oc.PARAM_HI_STOP),
+    ("loStop", oc.PARAM_LO_STOP),
+    ("erp", oc.PARAM_ERP),
+    ("cfm", oc.PARAM_CFM),
+    ("stop_erp", oc.PARAM_STOP_ERP),
+    ("stop_cfm", oc.PARAM_STOP_CFM),
+    ("fudge_factor", oc.PARAM_FUDGE_FACTOR),
+    ("fmax", oc.PARAM_FMAX),
+    ("vel", oc.PARAM_VEL),
+)
 
 
 class WorldError(ValueError):
@@ -148,8 +165,8 @@ def vector(values: Any, size: int, what: str) -> Tuple[float, ...]:
     """``size`` finite numbers as a tuple of floats, or WorldError."""
     try:
         ok = len(values) == size and all(
-            not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v)
-            for v in values)
+            not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v) for v in values
+        )
     except TypeError:
         ok = False
     if not ok:
@@ -202,8 +219,7 @@ def _conjugate(q: Quat) -> Quat:
     return (q[0], -q[1], -q[2], -q[3])
 
 
-def _set_rigid_twist(bodies: Sequence[ode.Body], origin: Vec3, linear: Vec3,
-                     angular: Vec3) -> None:
+def _set_rigid_twist(bodies: Sequence[ode.Body], origin: Vec3, linear: Vec3, angular: Vec3) -> None:
     """Move ``bodies`` as one rigid body: ``linear`` is the velocity of the point ``origin``."""
     for body in bodies:
         body.setLinearVel(_add(linear, _cross(angular, _sub(body.getPosition(), origin))))
@@ -307,8 +323,9 @@ class WorldControl:
             return model.model_transform(), linear, angular
         found = self._scoped_link(name)
         if found is None:
-            raise WorldError(f"reference frame '{name}' is not a model or link (use '', 'world', "
-                             f"a model name or 'model::link')")
+            raise WorldError(
+                f"reference frame '{name}' is not a model or link (use '', 'world', " f"a model name or 'model::link')"
+            )
         model, link = found
         linear, angular = model.link_twist(link)
         return model.link_transform(link), linear, angular
@@ -326,9 +343,14 @@ class WorldControl:
         position, (w, x, y, z) = pose
         return position, (x, y, z, w), linear, angular
 
-    def _absolute(self, position: Sequence[float], quaternion: Sequence[float],
-                  linear: Sequence[float], angular: Sequence[float],
-                  reference_frame: str) -> Tuple[Transform, Vec3, Vec3]:
+    def _absolute(
+        self,
+        position: Sequence[float],
+        quaternion: Sequence[float],
+        linear: Sequence[float],
+        angular: Sequence[float],
+        reference_frame: str,
+    ) -> Tuple[Transform, Vec3, Vec3]:
         """Validated world pose and twist from ones relative to ``reference_frame`` (the
         inverse of ``_relative``)."""
         pose: Transform = (vec3(position, "position"), orientation(quaternion, "orientation"))
@@ -349,16 +371,20 @@ class WorldControl:
         linear, angular = model.link_twist(model.root_link)
         return self._relative(model.model_transform(), linear, angular, frame)
 
-    def set_model_state(self, name: str, position: Sequence[float], quaternion: Sequence[float],
-                        linear: Sequence[float] = (0.0, 0.0, 0.0),
-                        angular: Sequence[float] = (0.0, 0.0, 0.0),
-                        reference_frame: str = "") -> None:
+    def set_model_state(
+        self,
+        name: str,
+        position: Sequence[float],
+        quaternion: Sequence[float],
+        linear: Sequence[float] = (0.0, 0.0, 0.0),
+        angular: Sequence[float] = (0.0, 0.0, 0.0),
+        reference_frame: str = "",
+    ) -> None:
         """Teleport the model frame; every body then moves with the model as one rigid body
         (``linear`` is its root link origin's velocity). Joints keep their positions; a static
         model ignores the twist."""
         model = self._model(name)
-        pose, linear, angular = self._absolute(position, quaternion, linear, angular,
-                                               reference_frame)
+        pose, linear, angular = self._absolute(position, quaternion, linear, angular, reference_frame)
         model.set_transform(pose)
         _set_rigid_twist(model.bodies, model.link_transform(model.root_link)[0], linear, angular)
 
@@ -369,15 +395,19 @@ class WorldControl:
         linear, angular = model.link_twist(link)
         return self._relative(model.link_transform(link), linear, angular, frame)
 
-    def set_link_state(self, name: str, position: Sequence[float], quaternion: Sequence[float],
-                       linear: Sequence[float] = (0.0, 0.0, 0.0),
-                       angular: Sequence[float] = (0.0, 0.0, 0.0),
-                       reference_frame: str = "") -> None:
+    def set_link_state(
+        self,
+        name: str,
+        position: Sequence[float],
+        quaternion: Sequence[float],
+        linear: Sequence[float] = (0.0, 0.0, 0.0),
+        angular: Sequence[float] = (0.0, 0.0, 0.0),
+        reference_frame: str = "",
+    ) -> None:
         """Move the body carrying the link (with every link fixed to it) so the link is at
         this pose and its origin at this velocity; joints pull the other bodies after it."""
         model, link, body = self._link_body(name)
-        pose, linear, angular = self._absolute(position, quaternion, linear, angular,
-                                               reference_frame)
+        pose, linear, angular = self._absolute(position, quaternion, linear, angular, reference_frame)
         position, quaternion = compose(pose, inverse(model.links[link].offset))
         body.setPosition(position)
         body.setQuaternion(quaternion)
@@ -385,14 +415,15 @@ class WorldControl:
 
     # --- properties ---------------------------------------------------------------------
     def world_properties(self) -> WorldProperties:
-        return WorldProperties(sim_time=self.physics.sim_time, model_names=list(self.models),
-                               rendering_enabled=False)
+        return WorldProperties(sim_time=self.physics.sim_time, model_names=list(self.models), rendering_enabled=False)
 
-    def to_world(self, reference_frame: str, position: Sequence[float],
-                 quaternion: Sequence[float]) -> Tuple[Vec3, QuatXYZW]:
+    def to_world(
+        self, reference_frame: str, position: Sequence[float], quaternion: Sequence[float]
+    ) -> Tuple[Vec3, QuatXYZW]:
         """A pose given in ``reference_frame`` (as SpawnModel's initial_pose) in the world."""
-        (world_position, (w, x, y, z)), _, _ = self._absolute(position, quaternion, (0, 0, 0),
-                                                             (0, 0, 0), reference_frame)
+        (world_position, (w, x, y, z)), _, _ = self._absolute(
+            position, quaternion, (0, 0, 0), (0, 0, 0), reference_frame
+        )
         return world_position, (x, y, z, w)
 
     def model_properties(self, name: str) -> ModelProperties:
@@ -400,9 +431,14 @@ class WorldControl:
         model = self._model(name)
         links = model.robot.links
         return ModelProperties(
-            parent_model_name="", canonical_body_name=model.root_link, body_names=list(links),
+            parent_model_name="",
+            canonical_body_name=model.root_link,
+            body_names=list(links),
             geom_names=[collision.name for link in links.values() for collision in link.collisions],
-            joint_names=list(model.joints), child_model_names=[], is_static=model.robot.static)
+            joint_names=list(model.joints),
+            child_model_names=[],
+            is_static=model.robot.static,
+        )
 
     def link_properties(self, name: str) -> LinkProperties:
         """Mass properties of the body carrying the link (links fixed together share one),
@@ -411,13 +447,28 @@ class WorldControl:
         com, rotation = inverse(model.links[link].offset)
         mass = body.getMass()
         (ixx, ixy, ixz), (_, iyy, iyz), (_, _, izz) = _rotated_inertia(rotation, mass.I)
-        return LinkProperties(com_position=com, com_orientation=(0.0, 0.0, 0.0, 1.0),
-                              gravity_mode=bool(body.getGravityMode()), mass=mass.mass,
-                              ixx=ixx, ixy=ixy, ixz=ixz, iyy=iyy, iyz=iyz, izz=izz)
+        return LinkProperties(
+            com_position=com,
+            com_orientation=(0.0, 0.0, 0.0, 1.0),
+            gravity_mode=bool(body.getGravityMode()),
+            mass=mass.mass,
+            ixx=ixx,
+            ixy=ixy,
+            ixz=ixz,
+            iyy=iyy,
+            iyz=iyz,
+            izz=izz,
+        )
 
-    def set_link_properties(self, name: str, com_position: Sequence[float],
-                            com_orientation: Sequence[float], gravity_mode: bool, mass: float,
-                            inertia: Sequence[float]) -> None:
+    def set_link_properties(
+        self,
+        name: str,
+        com_position: Sequence[float],
+        com_orientation: Sequence[float],
+        gravity_mode: bool,
+        mass: float,
+        inertia: Sequence[float],
+    ) -> None:
         """Replace the mass properties of the body carrying the link: COM pose in the link
         frame, ``inertia`` (ixx, ixy, ixz, iyy, iyz, izz) about the COM in the COM's axes.
         The links stay where they are."""
@@ -430,29 +481,52 @@ class WorldControl:
         ixx, ixy, ixz, iyy, iyz, izz = vector(inertia, 6, "inertia (ixx, ixy, ixz, iyy, iyz, izz)")
         matrix = ((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz))
         if not _is_positive_definite(matrix):
-            raise WorldError(f"inertia must be positive definite, got ixx={ixx}, ixy={ixy}, "
-                             f"ixz={ixz}, iyy={iyy}, iyz={iyz}, izz={izz}")
+            raise WorldError(
+                f"inertia must be positive definite, got ixx={ixx}, ixy={ixy}, "
+                f"ixz={ixz}, iyy={iyy}, iyz={iyz}, izz={izz}"
+            )
         model.set_mass(link, mass, com, _rotated_inertia(rotation, matrix))
         body.setGravityMode(bool(gravity_mode))
 
     def joint_properties(self, name: str) -> JointProperties:
         """Type, damping coefficient, position (continuous joints: multi-turn) and rate."""
         model, handle = self._joint(name)
-        return JointProperties(type=JOINT_TYPES[handle.type], damping=[model.damping(handle.name)],
-                               position=[handle.angle()], rate=[handle.rate()])
+        return JointProperties(
+            type=JOINT_TYPES[handle.type],
+            damping=[model.damping(handle.name)],
+            position=[handle.angle()],
+            rate=[handle.rate()],
+        )
 
-    def set_joint_properties(self, name: str, damping: JointParam = None,
-                             hiStop: JointParam = None, loStop: JointParam = None,
-                             erp: JointParam = None, cfm: JointParam = None,
-                             stop_erp: JointParam = None, stop_cfm: JointParam = None,
-                             fudge_factor: JointParam = None, fmax: JointParam = None,
-                             vel: JointParam = None) -> None:  # noqa: N803 (message names)
+    def set_joint_properties(
+        self,
+        name: str,
+        damping: JointParam = None,
+        hiStop: JointParam = None,
+        loStop: JointParam = None,
+        erp: JointParam = None,
+        cfm: JointParam = None,
+        stop_erp: JointParam = None,
+        stop_cfm: JointParam = None,
+        fudge_factor: JointParam = None,
+        fmax: JointParam = None,
+        vel: JointParam = None,
+    ) -> None:  # noqa: N803 (message names)
         """gazebo_msgs/ODEJointProperties, set through ODE's joint parameters (first axis: a
         list's first entry, as gazebo_ros does for one-axis joints). Stops may be infinite."""
         model, handle = self._joint(name)
-        given = {"damping": damping, "hiStop": hiStop, "loStop": loStop, "erp": erp, "cfm": cfm,
-                 "stop_erp": stop_erp, "stop_cfm": stop_cfm, "fudge_factor": fudge_factor,
-                 "fmax": fmax, "vel": vel}
+        given = {
+            "damping": damping,
+            "hiStop": hiStop,
+            "loStop": loStop,
+            "erp": erp,
+            "cfm": cfm,
+            "stop_erp": stop_erp,
+            "stop_cfm": stop_cfm,
+            "fudge_factor": fudge_factor,
+            "fmax": fmax,
+            "vel": vel,
+        }
         values: Dict[str, float] = {}
         for key, value in given.items():
             if value is not None and not isinstance(value, (int, float)):
@@ -484,21 +558,39 @@ class WorldControl:
     def physics_properties(self) -> PhysicsProperties:
         p = self.physics.params
         return PhysicsProperties(
-            time_step=p.time_step, max_update_rate=self.max_update_rate,
+            time_step=p.time_step,
+            max_update_rate=self.max_update_rate,
             gravity=(p.gravity[0], p.gravity[1], p.gravity[2]),
             ode_config=OdeConfig(
-                auto_disable_bodies=False, sor_pgs_precon_iters=0, sor_pgs_iters=p.solver_iterations,
-                sor_pgs_w=SOR_PGS_W, sor_pgs_rms_error_tol=0.0,
+                auto_disable_bodies=False,
+                sor_pgs_precon_iters=0,
+                sor_pgs_iters=p.solver_iterations,
+                sor_pgs_w=SOR_PGS_W,
+                sor_pgs_rms_error_tol=0.0,
                 contact_surface_layer=p.contact_surface_layer,
-                contact_max_correcting_vel=p.contact_max_correcting_vel, cfm=p.cfm, erp=p.erp,
-                max_contacts=p.max_contacts))
+                contact_max_correcting_vel=p.contact_max_correcting_vel,
+                cfm=p.cfm,
+                erp=p.erp,
+                max_contacts=p.max_contacts,
+            ),
+        )
 
-    def set_physics_properties(self, time_step: float, max_update_rate: float,
-                               gravity: Sequence[float], iterations: int, erp: float, cfm: float,
-                               contact_surface_layer: float, contact_max_correcting_vel: float,
-                               max_contacts: int, auto_disable_bodies: bool = False,
-                               sor_pgs_precon_iters: int = 0, sor_pgs_w: float = SOR_PGS_W,
-                               sor_pgs_rms_error_tol: float = 0.0) -> List[str]:
+    def set_physics_properties(
+        self,
+        time_step: float,
+        max_update_rate: float,
+        gravity: Sequence[float],
+        iterations: int,
+        erp: float,
+        cfm: float,
+        contact_surface_layer: float,
+        contact_max_correcting_vel: float,
+        max_contacts: int,
+        auto_disable_bodies: bool = False,
+        sor_pgs_precon_iters: int = 0,
+        sor_pgs_w: float = SOR_PGS_W,
+        sor_pgs_rms_error_tol: float = 0.0,
+    ) -> List[str]:
         """Apply to the live world between steps (sim time stays continuous); ``iterations`` is
         ode_config.sor_pgs_iters. Returns warnings for the ode_config settings the simulator
         keeps fixed (auto-disable, preconditioning, SOR factor, RMS tolerance)."""
@@ -507,19 +599,25 @@ class WorldControl:
         finite(sor_pgs_w, "sor_pgs_w")
         finite(sor_pgs_rms_error_tol, "sor_pgs_rms_error_tol")
         params = replace(
-            self.physics.params, time_step=finite(time_step, "time_step"),
-            gravity=vec3(gravity, "gravity"), solver_iterations=iterations,
-            erp=finite(erp, "erp"), cfm=finite(cfm, "cfm"),
+            self.physics.params,
+            time_step=finite(time_step, "time_step"),
+            gravity=vec3(gravity, "gravity"),
+            solver_iterations=iterations,
+            erp=finite(erp, "erp"),
+            cfm=finite(cfm, "cfm"),
             contact_surface_layer=finite(contact_surface_layer, "contact_surface_layer"),
-            contact_max_correcting_vel=finite(contact_max_correcting_vel,
-                                              "contact_max_correcting_vel"),
-            max_contacts=max_contacts)
+            contact_max_correcting_vel=finite(contact_max_correcting_vel, "contact_max_correcting_vel"),
+            max_contacts=max_contacts,
+        )
         try:
             params.validate()
         except ValueError as error:
             message = str(error)
-            raise WorldError(message.replace("solver_iterations", "iterations", 1)
-                             if message.startswith("solver_iterations") else message) from None
+            raise WorldError(
+                message.replace("solver_iterations", "iterations", 1)
+                if message.startswith("solver_iterations")
+                else message
+            ) from None
         warnings = []
         if auto_disable_bodies:
             warnings.append("auto_disable_bodies is not supported: bodies stay enabled")
@@ -534,18 +632,18 @@ class WorldControl:
         return warnings
 
     # --- joints ---------------------------------------------------------------------------
-    def set_model_configuration(self, model_name: str, joint_names: Sequence[str],
-                                positions: Sequence[float]) -> None:
+    def set_model_configuration(self, model_name: str, joint_names: Sequence[str], positions: Sequence[float]) -> None:
         """Put the named joints (plain or "model::joint") at these positions by moving the
         bodies below them; the root body stays, the model comes to rest, other joints keep
         their positions. Drive odometry does not count the wheels' jump."""
         model = self._model(model_name)
         if len(joint_names) != len(positions):
-            raise WorldError(f"joint_names and positions have different lengths "
-                             f"({len(joint_names)} and {len(positions)})")
+            raise WorldError(
+                f"joint_names and positions have different lengths " f"({len(joint_names)} and {len(positions)})"
+            )
         targets: Dict[str, float] = {}
         for name, position in zip(joint_names, positions):
-            joint = name[len(model_name) + len(SCOPE):] if name.startswith(model_name + SCOPE) else name
+            joint = name[len(model_name) + len(SCOPE) :] if name.startswith(model_name + SCOPE) else name
             if joint not in model.joints:
                 raise WorldError(f"model '{model_name}' has no joint '{name}'")
             targets[joint] = finite(position, f"position of joint '{name}'")
@@ -566,9 +664,16 @@ class WorldControl:
         duration = finite(duration, "duration")
         return start, math.inf if duration < 0 else start + duration
 
-    def apply_body_wrench(self, link: str, reference_frame: str, reference_point: Sequence[float],
-                          force: Sequence[float], torque: Sequence[float],
-                          start_time: float = 0.0, duration: float = -1.0) -> None:
+    def apply_body_wrench(
+        self,
+        link: str,
+        reference_frame: str,
+        reference_point: Sequence[float],
+        force: Sequence[float],
+        torque: Sequence[float],
+        start_time: float = 0.0,
+        duration: float = -1.0,
+    ) -> None:
         """Push the link's body from ``start_time`` for ``duration`` sim seconds (negative:
         until cleared; shorter than a step: one step).
 
@@ -595,18 +700,16 @@ class WorldControl:
         def apply() -> None:
             add_force(push)
             add_torque(turn)
-        self.loads.append(Load("wrench", model.name, f"{model.name}{SCOPE}{link_name}", apply,
-                               start, end))
+
+        self.loads.append(Load("wrench", model.name, f"{model.name}{SCOPE}{link_name}", apply, start, end))
 
     def clear_body_wrenches(self, link: str) -> None:
         """Drop every wrench on this link, scheduled or running."""
         model, link_name = self._link(link)
         target = f"{model.name}{SCOPE}{link_name}"
-        self.loads = [load for load in self.loads
-                      if not (load.kind == "wrench" and load.target == target)]
+        self.loads = [load for load in self.loads if not (load.kind == "wrench" and load.target == target)]
 
-    def apply_joint_effort(self, joint: str, effort: float, start_time: float = 0.0,
-                           duration: float = -1.0) -> None:
+    def apply_joint_effort(self, joint: str, effort: float, start_time: float = 0.0, duration: float = -1.0) -> None:
         """Torque (revolute) or force (prismatic) along the joint axis, positive towards
         increasing position, scheduled as ``apply_body_wrench``."""
         model, handle = self._joint(joint)
@@ -620,9 +723,11 @@ class WorldControl:
         (as gazebo_ros matches joint names)."""
         model, handle = self._joint(joint)
         everywhere = joint == handle.name
-        self.loads = [load for load in self.loads if not (
-            load.kind == "effort" and load.target == handle.name
-            and (everywhere or load.model == model.name))]
+        self.loads = [
+            load
+            for load in self.loads
+            if not (load.kind == "effort" and load.target == handle.name and (everywhere or load.model == model.name))
+        ]
 
     def apply_loads(self) -> None:
         """Add the forces due in the coming step, and drop the loads that end with it."""

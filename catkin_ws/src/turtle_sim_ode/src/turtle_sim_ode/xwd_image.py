@@ -5,11 +5,33 @@ import struct
 
 import numpy as np
 
-_HEADER_FIELDS = ("header_size", "file_version", "pixmap_format", "pixmap_depth", "pixmap_width", "pixmap_height",
-                  "xoffset", "byte_order", "bitmap_unit", "bitmap_bit_order", "bitmap_pad", "bits_per_pixel",
-                  "bytes_per_line", "visual_class", "red_mask", "green_mask", "blue_mask", "bits_per_rgb",
-                  "colormap_entries", "ncolors", "window_width", "window_height", "window_x", "window_y",
-                  "window_bdrwidth")
+_HEADER_FIELDS = (
+    "header_size",
+    "file_version",
+    "pixmap_format",
+    "pixmap_depth",
+    "pixmap_width",
+    "pixmap_height",
+    "xoffset",
+    "byte_order",
+    "bitmap_unit",
+    "bitmap_bit_order",
+    "bitmap_pad",
+    "bits_per_pixel",
+    "bytes_per_line",
+    "visual_class",
+    "red_mask",
+    "green_mask",
+    "blue_mask",
+    "bits_per_rgb",
+    "colormap_entries",
+    "ncolors",
+    "window_width",
+    "window_height",
+    "window_x",
+    "window_y",
+    "window_bdrwidth",
+)
 
 
 def _channel(pixels: np.ndarray, mask: int) -> np.ndarray:
@@ -26,7 +48,7 @@ def read_xwd(data: bytes) -> np.ndarray:
     offset = header["header_size"] + 12 * header["ncolors"]
     height, width, stride = header["pixmap_height"], header["pixmap_width"], header["bytes_per_line"]
     rows = np.frombuffer(data, dtype=np.uint8, count=height * stride, offset=offset).reshape(height, stride)
-    pixel_bytes_array = rows[:, :width * pixel_bytes].reshape(height, width, pixel_bytes).astype(np.uint32)
+    pixel_bytes_array = rows[:, : width * pixel_bytes].reshape(height, width, pixel_bytes).astype(np.uint32)
     if header["byte_order"] != 0:  # MSBFirst: most significant byte first
         pixel_bytes_array = pixel_bytes_array[..., ::-1]
     pixels = sum(pixel_bytes_array[..., i] << (8 * i) for i in range(pixel_bytes))

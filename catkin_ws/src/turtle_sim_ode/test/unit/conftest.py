@@ -43,8 +43,9 @@ class TurtleSim:
         position, quaternion = self.model.link_pose("base_footprint")
         return position[0], position[1], yaw_of(quaternion)
 
-    def run(self, seconds: float, command: Optional[Tuple[float, float]] = None,
-            sample_period: Optional[float] = None) -> List[Tuple[float, float, float]]:
+    def run(
+        self, seconds: float, command: Optional[Tuple[float, float]] = None, sample_period: Optional[float] = None
+    ) -> List[Tuple[float, float, float]]:
         """Step for ``seconds``, re-sending ``command`` at 10 Hz; returns sampled poses."""
         samples: List[Tuple[float, float, float]] = []
         dt = self.physics.time_step

@@ -69,8 +69,15 @@ def test_encoder_odometry_tracks_ground_truth(solver):
     sim = TurtleSim(solver)
     sim.settle()
     start = sim.pose()
-    path = [(0.5, 0.0, 6.0), (0.3, 0.5, 4.0), (0.4, -0.6, 5.0), (0.0, 1.0, 2.0),
-            (0.5, 0.2, 6.0), (-0.2, 0.0, 2.0), (0.45, -0.3, 5.0)]
+    path = [
+        (0.5, 0.0, 6.0),
+        (0.3, 0.5, 4.0),
+        (0.4, -0.6, 5.0),
+        (0.0, 1.0, 2.0),
+        (0.5, 0.2, 6.0),
+        (-0.2, 0.0, 2.0),
+        (0.45, -0.3, 5.0),
+    ]
     distance, previous = 0.0, start
     for linear, angular, seconds in path:
         for pose in sim.run(seconds, (linear, angular), sample_period=0.01):

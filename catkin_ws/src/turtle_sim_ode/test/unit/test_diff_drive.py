@@ -82,8 +82,7 @@ def test_acceleration_limit_ramps_both_wheels_keeping_curvature():
         if speeds[1] != final_right:
             assert speeds[0] / speeds[1] == pytest.approx(final_left / final_right)
         previous = speeds
-    assert (left.params[oc.PARAM_VEL], right.params[oc.PARAM_VEL]) == pytest.approx(
-        (final_left, final_right))
+    assert (left.params[oc.PARAM_VEL], right.params[oc.PARAM_VEL]) == pytest.approx((final_left, final_right))
 
 
 def test_stop_clears_command_and_motors():
@@ -96,11 +95,18 @@ def test_stop_clears_command_and_motors():
     assert drive.wheel_speeds == (0.0, 0.0)
 
 
-@pytest.mark.parametrize("field, value", [
-    ("wheel_separation", 0.0), ("wheel_radius", -1.0), ("max_wheel_torque", math.nan),
-    ("max_wheel_acceleration", -1.0), ("cmd_timeout", -0.1), ("max_linear", 0.0),
-    ("odometry_integration", "euler"),
-])
+@pytest.mark.parametrize(
+    "field, value",
+    [
+        ("wheel_separation", 0.0),
+        ("wheel_radius", -1.0),
+        ("max_wheel_torque", math.nan),
+        ("max_wheel_acceleration", -1.0),
+        ("cmd_timeout", -0.1),
+        ("max_linear", 0.0),
+        ("odometry_integration", "euler"),
+    ],
+)
 def test_params_validation_names_field(field, value):
     with pytest.raises(ValueError, match=field):
         DiffDriveParams(**{field: value}).validate()
@@ -108,12 +114,23 @@ def test_params_validation_names_field(field, value):
 
 def test_params_from_kobuki_plugin():
     params = DiffDriveParams.from_kobuki_plugin(
-        {"wheel_separation": ".230", "wheel_diameter": "0.070", "torque": "1.0",
-         "velocity_command_timeout": "0.6", "publish_tf": "1"}, max_linear=0.5)
-    assert (params.wheel_separation, params.wheel_radius, params.max_wheel_torque,
-            params.cmd_timeout, params.max_linear) == (0.23, 0.035, 1.0, 0.6, 0.5)
-    assert DiffDriveParams.from_kobuki_plugin({"torque": "1.0"}, max_wheel_torque=3.0
-                                              ).max_wheel_torque == 3.0
+        {
+            "wheel_separation": ".230",
+            "wheel_diameter": "0.070",
+            "torque": "1.0",
+            "velocity_command_timeout": "0.6",
+            "publish_tf": "1",
+        },
+        max_linear=0.5,
+    )
+    assert (
+        params.wheel_separation,
+        params.wheel_radius,
+        params.max_wheel_torque,
+        params.cmd_timeout,
+        params.max_linear,
+    ) == (0.23, 0.035, 1.0, 0.6, 0.5)
+    assert DiffDriveParams.from_kobuki_plugin({"torque": "1.0"}, max_wheel_torque=3.0).max_wheel_torque == 3.0
     with pytest.raises(ValueError, match="not a number"):
         DiffDriveParams.from_kobuki_plugin({"torque": "strong"})
 
@@ -154,5 +171,4 @@ def test_odometry_reset_keeps_encoder_baseline_out():
     odometry.update(100.0, 100.0, 2.0)  # new baseline, no jump
     assert odometry.pose == (1.0, 2.0, 0.5)
     odometry.update(102.0, 102.0, 3.0)
-    assert odometry.pose == pytest.approx(
-        (1.0 + 0.1 * math.cos(0.5), 2.0 + 0.1 * math.sin(0.5), 0.5))
+    assert odometry.pose == pytest.approx((1.0 + 0.1 * math.cos(0.5), 2.0 + 0.1 * math.sin(0.5), 0.5))

@@ -15,12 +15,14 @@ BOX = '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
 
 
 def inertial(mass, xyz="0 0 0", ixx=0.1, iyy=0.1, izz=0.1):
-    return (f'<inertial><mass value="{mass}"/><origin xyz="{xyz}"/>'
-            f'<inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>')
+    return (
+        f'<inertial><mass value="{mass}"/><origin xyz="{xyz}"/>'
+        f'<inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>'
+    )
 
 
 # "b" is fixed to "a" 1 m ahead and turned 90 degrees; its COM is 0.5 m along its own x.
-MERGED = f'''<robot name="merged">
+MERGED = f"""<robot name="merged">
   <link name="a">{inertial(1.0)}</link>
   <link name="b">{inertial(3.0, "0.5 0 0", 0.2, 0.4, 0.6)}{BOX}</link>
   <link name="c">{inertial(0.5)}</link>
@@ -30,7 +32,7 @@ MERGED = f'''<robot name="merged">
     <origin xyz="0 0 1"/><axis xyz="0 0 1"/>
     <limit lower="-0.5" upper="0.5" effort="1" velocity="1"/></joint>
   <gazebo reference="b"><mu1>0.25</mu1><kp>1e5</kp></gazebo>
-</robot>'''
+</robot>"""
 
 
 def test_fixed_joint_merges_mass_com_and_inertia():
@@ -45,10 +47,9 @@ def test_fixed_joint_merges_mass_com_and_inertia():
     assert body.getPosition() == pytest.approx((0.75, 0.375, 0.0))
     # b's inertia rotated 90 deg about z, plus the parallel-axis terms about the COM.
     (ixx, ixy, ixz), (_, iyy, iyz), (_, _, izz) = mass.I
-    assert ixx == pytest.approx(0.1 + 0.4 + 1 * 0.375 ** 2 + 3 * 0.125 ** 2)
-    assert iyy == pytest.approx(0.1 + 0.2 + 1 * 0.75 ** 2 + 3 * 0.25 ** 2)
-    assert izz == pytest.approx(0.1 + 0.6 + 1 * (0.75 ** 2 + 0.375 ** 2)
-                                + 3 * (0.25 ** 2 + 0.125 ** 2))
+    assert ixx == pytest.approx(0.1 + 0.4 + 1 * 0.375**2 + 3 * 0.125**2)
+    assert iyy == pytest.approx(0.1 + 0.2 + 1 * 0.75**2 + 3 * 0.25**2)
+    assert izz == pytest.approx(0.1 + 0.6 + 1 * (0.75**2 + 0.375**2) + 3 * (0.25**2 + 0.125**2))
     assert ixy == pytest.approx(-(1 * 0.75 * 0.375 + 3 * 0.25 * 0.125))
     assert (ixz, iyz) == (pytest.approx(0.0), pytest.approx(0.0))
 
@@ -86,15 +87,16 @@ def test_revolute_joint_sign_and_limits():
     assert joint.rate() == pytest.approx(1.0, rel=1e-3)
     assert joint.angle() == pytest.approx(0.2, abs=0.01)
     # The child really turned counter-clockwise about +z relative to the parent.
-    relative_yaw = 2 * math.atan2(model.link_pose("c")[1][2], model.link_pose("c")[1][3]) \
-        - 2 * math.atan2(model.link_pose("b")[1][2], model.link_pose("b")[1][3])
+    relative_yaw = 2 * math.atan2(model.link_pose("c")[1][2], model.link_pose("c")[1][3]) - 2 * math.atan2(
+        model.link_pose("b")[1][2], model.link_pose("b")[1][3]
+    )
     assert relative_yaw == pytest.approx(joint.angle(), abs=1e-6)
     for _ in range(1000):
         physics.step()
     assert joint.angle() == pytest.approx(0.5, abs=0.02)
 
 
-SPINNER = f'''<robot name="spinner">
+SPINNER = f"""<robot name="spinner">
   <link name="base">{inertial(10.0, ixx=10, iyy=10, izz=10)}</link>
   <link name="wheel">{inertial(0.1)}</link>
   <link name="slide">{inertial(0.1)}</link>
@@ -103,7 +105,7 @@ SPINNER = f'''<robot name="spinner">
   <joint name="push" type="prismatic"><parent link="base"/><child link="slide"/>
     <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>
     <dynamics damping="0.5"/></joint>
-</robot>'''
+</robot>"""
 
 
 def test_continuous_joint_angle_counts_whole_turns():
@@ -178,8 +180,8 @@ def test_link_lookup_errors_name_the_link():
 
 def test_massless_moving_link_is_rejected_and_leaves_world_clean():
     physics = PhysicsWorld()
-    urdf = f'''<robot name="r"><link name="a">{inertial(1.0)}{BOX}</link><link name="b">{BOX}</link>
-      <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint></robot>'''
+    urdf = f"""<robot name="r"><link name="a">{inertial(1.0)}{BOX}</link><link name="b">{BOX}</link>
+      <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint></robot>"""
     with pytest.raises(ModelError, match="'b'.*no <inertial>"):
         build_model(physics, parse_urdf(urdf))
     assert physics.space.getNumGeoms() == 0

@@ -8,18 +8,45 @@ import pytest
 from turtle_sim_ode import ode_constants as oc
 
 COMMON_H = Path("/usr/include/ode/common.h")
-PARAM_NAMES = ["LoStop", "HiStop", "Vel", "LoVel", "HiVel", "FMax", "FudgeFactor", "Bounce",
-               "CFM", "StopERP", "StopCFM", "SuspensionERP", "SuspensionCFM", "ERP"]
-OUR_NAMES = ["PARAM_LO_STOP", "PARAM_HI_STOP", "PARAM_VEL", "PARAM_LO_VEL", "PARAM_HI_VEL",
-             "PARAM_FMAX", "PARAM_FUDGE_FACTOR", "PARAM_BOUNCE", "PARAM_CFM", "PARAM_STOP_ERP",
-             "PARAM_STOP_CFM", "PARAM_SUSPENSION_ERP", "PARAM_SUSPENSION_CFM", "PARAM_ERP"]
+PARAM_NAMES = [
+    "LoStop",
+    "HiStop",
+    "Vel",
+    "LoVel",
+    "HiVel",
+    "FMax",
+    "FudgeFactor",
+    "Bounce",
+    "CFM",
+    "StopERP",
+    "StopCFM",
+    "SuspensionERP",
+    "SuspensionCFM",
+    "ERP",
+]
+OUR_NAMES = [
+    "PARAM_LO_STOP",
+    "PARAM_HI_STOP",
+    "PARAM_VEL",
+    "PARAM_LO_VEL",
+    "PARAM_HI_VEL",
+    "PARAM_FMAX",
+    "PARAM_FUDGE_FACTOR",
+    "PARAM_BOUNCE",
+    "PARAM_CFM",
+    "PARAM_STOP_ERP",
+    "PARAM_STOP_CFM",
+    "PARAM_SUSPENSION_ERP",
+    "PARAM_SUSPENSION_CFM",
+    "PARAM_ERP",
+]
 
 
 @pytest.mark.skipif(not COMMON_H.exists(), reason="libode-dev headers not installed")
 def test_param_order_matches_libode_header():
     macro = COMMON_H.read_text().split("#define D_ALL_PARAM_NAMES(start)")[1].split("\n\n")[0]
     header_order = re.findall(r"dParam(\w+?)\b", macro)
-    assert header_order[:len(PARAM_NAMES)] == PARAM_NAMES
+    assert header_order[: len(PARAM_NAMES)] == PARAM_NAMES
     assert [getattr(oc, name) for name in OUR_NAMES] == list(range(len(PARAM_NAMES)))
     assert "dParamGroup=0x100" in COMMON_H.read_text().replace(" ", "")
     assert oc.PARAM_GROUP2 + oc.PARAM_FMAX == 0x105

@@ -7,13 +7,27 @@ import pytest
 from turtle_sim_ode.physics import PhysicsParams, PhysicsWorld, SurfaceParams, combine_surfaces
 
 
-@pytest.mark.parametrize("field, value", [
-    ("time_step", 0.0), ("time_step", -0.001), ("time_step", math.nan), ("time_step", 1.0),
-    ("solver", "dantzig"), ("solver_iterations", 0), ("solver_iterations", 1001),
-    ("solver_iterations", 2.5), ("gravity", (0.0, 0.0, math.nan)), ("gravity", (0.0, 9.81)),
-    ("erp", 1.5), ("cfm", -1.0), ("max_contacts", 0), ("contact_surface_layer", math.inf),
-    ("default_surface", SurfaceParams(mu=-1.0)), ("ground_surface", SurfaceParams(kp=0.0)),
-])
+@pytest.mark.parametrize(
+    "field, value",
+    [
+        ("time_step", 0.0),
+        ("time_step", -0.001),
+        ("time_step", math.nan),
+        ("time_step", 1.0),
+        ("solver", "dantzig"),
+        ("solver_iterations", 0),
+        ("solver_iterations", 1001),
+        ("solver_iterations", 2.5),
+        ("gravity", (0.0, 0.0, math.nan)),
+        ("gravity", (0.0, 9.81)),
+        ("erp", 1.5),
+        ("cfm", -1.0),
+        ("max_contacts", 0),
+        ("contact_surface_layer", math.inf),
+        ("default_surface", SurfaceParams(mu=-1.0)),
+        ("ground_surface", SurfaceParams(kp=0.0)),
+    ],
+)
 def test_validate_names_bad_field_and_value(field, value):
     params = PhysicsParams(**{field: value})
     with pytest.raises(ValueError) as error:
@@ -100,8 +114,7 @@ def test_ball_lands_on_static_box():
 
 
 def test_surfaces_combine_like_gazebo():
-    a, b = SurfaceParams(mu=0.2, mu2=3.0, kp=1e6, kd=10.0), SurfaceParams(mu=1.0, mu2=0.5,
-                                                                          kp=1e6, kd=5.0)
+    a, b = SurfaceParams(mu=0.2, mu2=3.0, kp=1e6, kd=10.0), SurfaceParams(mu=1.0, mu2=0.5, kp=1e6, kd=5.0)
     _, mu, mu2, erp, cfm = combine_surfaces(a, b, 0.001)
     kp, kd = 5e5, 15.0  # springs in series, dampers in parallel
     assert (mu, mu2) == (0.2, 0.5)

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from turtle_sim_ode.plugins import (DIFF_DRIVE, KOBUKI, P3D, find_body, read_plugins)
+from turtle_sim_ode.plugins import DIFF_DRIVE, KOBUKI, P3D, find_body, read_plugins
 from turtle_sim_ode.urdf_model import GazeboPlugin, ModelError, parse_urdf
 
 from conftest import TURTLEBOT_URDF
@@ -23,18 +23,27 @@ def test_turtlebot3_diff_drive_tags():
     assert drive.params.max_wheel_torque == 10.0
     assert drive.params.max_wheel_acceleration == pytest.approx(1 / 0.033)  # m/s^2 -> rad/s^2
     assert (drive.command_topic, drive.odometry_topic, drive.odometry_frame, drive.base_frame) == (
-        "cmd_vel", "odom", "odom", "base_footprint")
+        "cmd_vel",
+        "odom",
+        "odom",
+        "base_footprint",
+    )
     assert drive.odometry_source == "world" and drive.publish_tf and drive.publish_joint_states
     assert drive.update_rate == 30.0
     (truth,) = plugins.ground_truths
-    assert (truth.body, truth.topic, truth.frame, truth.update_rate) == ("base_footprint", "ground_truth/burger",
-                                                                         "world", 50.0)
+    assert (truth.body, truth.topic, truth.frame, truth.update_rate) == (
+        "base_footprint",
+        "ground_truth/burger",
+        "world",
+        50.0,
+    )
 
 
 def test_kobuki_topics_follow_the_model_name():
     robot = parse_urdf(TURTLEBOT_URDF)
-    (drive,) = read_plugins("mobile_base", robot.plugins, {"cmd_timeout": 1.0},
-                            ["wheel_left_joint", "wheel_right_joint"]).drives
+    (drive,) = read_plugins(
+        "mobile_base", robot.plugins, {"cmd_timeout": 1.0}, ["wheel_left_joint", "wheel_right_joint"]
+    ).drives
     assert drive.filename == KOBUKI
     assert drive.command_topic == "mobile_base/commands/velocity"
     assert drive.reset_topic == "mobile_base/commands/reset_odometry"
@@ -49,13 +58,16 @@ def test_defaults_of_gazebo_ros_diff_drive():
     assert drive.command_topic == "cmd_vel" and drive.update_rate == 100.0
 
 
-@pytest.mark.parametrize("params, message", [
-    ({"wheelSeparation": "wide"}, "<wheelSeparation> must be a number"),
-    ({"wheelDiameter": "-1"}, "<wheelDiameter> must be a finite number >= 0"),
-    ({"publishTf": "maybe"}, "<publishTf> must be true or false"),
-    ({"odometrySource": "gps"}, "<odometrySource> must be encoder or world"),
-    ({"leftJoint": "no_such_joint"}, "no movable joint(s) ['no_such_joint']"),
-])
+@pytest.mark.parametrize(
+    "params, message",
+    [
+        ({"wheelSeparation": "wide"}, "<wheelSeparation> must be a number"),
+        ({"wheelDiameter": "-1"}, "<wheelDiameter> must be a finite number >= 0"),
+        ({"publishTf": "maybe"}, "<publishTf> must be true or false"),
+        ({"odometrySource": "gps"}, "<odometrySource> must be encoder or world"),
+        ({"leftJoint": "no_such_joint"}, "no movable joint(s) ['no_such_joint']"),
+    ],
+)
 def test_bad_tags_are_named(params, message):
     plugin = GazeboPlugin(DIFF_DRIVE, "drive", params)
     with pytest.raises(ModelError) as error:

@@ -21,8 +21,10 @@ def sdf(body, version="1.6"):
 
 
 def inertial(mass=1.0, inertia=0.1):
-    return (f"<inertial><mass>{mass}</mass><inertia><ixx>{inertia}</ixx><iyy>{inertia}</iyy>"
-            f"<izz>{inertia}</izz></inertia></inertial>")
+    return (
+        f"<inertial><mass>{mass}</mass><inertia><ixx>{inertia}</ixx><iyy>{inertia}</iyy>"
+        f"<izz>{inertia}</izz></inertia></inertial>"
+    )
 
 
 def link(name, pose="0 0 0 0 0 0", extra=inertial()):
@@ -30,8 +32,7 @@ def link(name, pose="0 0 0 0 0 0", extra=inertial()):
 
 
 def box_collision(size, surface=""):
-    return (f'<collision name="c"><geometry><box><size>{size}</size></box></geometry>'
-            f'{surface}</collision>')
+    return f'<collision name="c"><geometry><box><size>{size}</size></box></geometry>' f"{surface}</collision>"
 
 
 def model(name, *parts, static=False):
@@ -40,11 +41,14 @@ def model(name, *parts, static=False):
 
 # base at the model origin; arm 1 m ahead, hinged 0.5 m behind its origin (joint pose).
 ARM = model(
-    "arm", link("base", extra=inertial(10.0, 10.0)), link("arm", "1 0 0 0 0 0"),
+    "arm",
+    link("base", extra=inertial(10.0, 10.0)),
+    link("arm", "1 0 0 0 0 0"),
     '<joint name="hinge" type="revolute"><parent>base</parent><child>arm</child>'
-    '<pose>-0.5 0 0 0 0 0</pose><axis><xyz>0 0 1</xyz>'
-    '<limit><lower>-0.5</lower><upper>0.5</upper><effort>3</effort></limit>'
-    '<dynamics><damping>0.1</damping><friction>0</friction></dynamics></axis></joint>')
+    "<pose>-0.5 0 0 0 0 0</pose><axis><xyz>0 0 1</xyz>"
+    "<limit><lower>-0.5</lower><upper>0.5</upper><effort>3</effort></limit>"
+    "<dynamics><damping>0.1</damping><friction>0</friction></dynamics></axis></joint>",
+)
 
 
 # --- worlds ------------------------------------------------------------------------------
@@ -113,7 +117,9 @@ def test_static_model_teleports_and_removes_only_its_geoms():
 
 
 def test_world_includes_plugins_and_ignored_parts():
-    world = parse_sdf_world(sdf('''<world name="w">
+    world = parse_sdf_world(
+        sdf(
+            """<world name="w">
       <light name="l" type="directional"/>
       <include><uri>model://turtlebot3_burger</uri><name>robot</name>
         <pose>1 2 0 0 0 1.5</pose><static>false</static></include>
@@ -124,10 +130,14 @@ def test_world_includes_plugins_and_ignored_parts():
       <model name="ground_plane"><static>true</static><link name="link"><collision name="c">
         <geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>
       </collision></link></model>
-    </world>''', "1.4"))
-    assert world.includes == [Include("model://turtlebot3_burger", "robot",
-                                      Pose((1.0, 2.0, 0.0), (0.0, 0.0, 1.5)), False),
-                              Include("model://table")]
+    </world>""",
+            "1.4",
+        )
+    )
+    assert world.includes == [
+        Include("model://turtlebot3_burger", "robot", Pose((1.0, 2.0, 0.0), (0.0, 0.0, 1.5)), False),
+        Include("model://table"),
+    ]
     assert world.plugins[0].params == {"ros_ns": "/g"}
     assert world.physics.gravity == (0.0, 0.0, -1.0)  # SDF 1.4 puts it in <physics>
     assert world.ground_plane and not world.sun and world.models == []
@@ -135,10 +145,14 @@ def test_world_includes_plugins_and_ignored_parts():
 
 
 def test_world_physics_default_block_and_range():
-    world = parse_sdf_world(sdf('<world name="w"><physics type="ode"><max_step_size>0.01'
-                                '</max_step_size></physics><physics type="bullet" default="1">'
-                                '<ode><constraints><erp>2</erp></constraints></ode></physics>'
-                                '</world>'))
+    world = parse_sdf_world(
+        sdf(
+            '<world name="w"><physics type="ode"><max_step_size>0.01'
+            '</max_step_size></physics><physics type="bullet" default="1">'
+            "<ode><constraints><erp>2</erp></constraints></ode></physics>"
+            "</world>"
+        )
+    )
     assert world.physics.max_step_size is None  # the default block is the second one
     assert "only its ODE settings" in world.warnings[0] and "no ground_plane" in world.warnings[1]
     with pytest.raises(ModelError, match="erp"):
@@ -173,32 +187,47 @@ def test_two_link_revolute_model_moves_and_stops_at_its_limit():
 
 @pytest.mark.parametrize("limit", ["", "<limit><lower>-1e16</lower><upper>1e16</upper></limit>"])
 def test_unlimited_revolute_is_continuous(limit):
-    robot = parse_sdf_model(sdf(model(
-        "m", link("a"), link("b"),
-        f'<joint name="j" type="revolute"><parent>a</parent><child>b</child>'
-        f'<axis><xyz>0 1 0</xyz>{limit}</axis></joint>')))
+    robot = parse_sdf_model(
+        sdf(
+            model(
+                "m",
+                link("a"),
+                link("b"),
+                f'<joint name="j" type="revolute"><parent>a</parent><child>b</child>'
+                f"<axis><xyz>0 1 0</xyz>{limit}</axis></joint>",
+            )
+        )
+    )
     assert robot.joints["j"].type == "continuous"
 
 
 # The child link is yawed 90 degrees and the joint frame rolled 90 degrees in it, so the
 # model's x axis is the joint frame's z axis; spawned yawed 90 degrees, that is world y.
-@pytest.mark.parametrize("version, axis", [
-    ("1.4", "<xyz>1 0 0</xyz>"),
-    ("1.5", "<xyz>1 0 0</xyz><use_parent_model_frame>true</use_parent_model_frame>"),
-    ("1.5", "<xyz>0 0 1</xyz>"),
-    ("1.6", "<xyz>0 0 1</xyz>"),
-    ("1.7", "<xyz>0 0 1</xyz>"),
-    ("1.7", '<xyz expressed_in="__model__">1 0 0</xyz>'),
-    ("1.7", '<xyz expressed_in="b">0 -1 0</xyz>'),
-])
+@pytest.mark.parametrize(
+    "version, axis",
+    [
+        ("1.4", "<xyz>1 0 0</xyz>"),
+        ("1.5", "<xyz>1 0 0</xyz><use_parent_model_frame>true</use_parent_model_frame>"),
+        ("1.5", "<xyz>0 0 1</xyz>"),
+        ("1.6", "<xyz>0 0 1</xyz>"),
+        ("1.7", "<xyz>0 0 1</xyz>"),
+        ("1.7", '<xyz expressed_in="__model__">1 0 0</xyz>'),
+        ("1.7", '<xyz expressed_in="b">0 -1 0</xyz>'),
+    ],
+)
 def test_axis_conventions_of_sdf_versions_give_the_same_world_axis(version, axis):
-    text = sdf(model(
-        "m", link("a"), link("b", f"1 0 0 0 0 {math.pi / 2}"),
-        f'<joint name="j" type="revolute"><parent>a</parent><child>b</child>'
-        f'<pose>0 0 0 {math.pi / 2} 0 0</pose><axis>{axis}'
-        f'<limit><lower>-1</lower><upper>1</upper></limit></axis></joint>'), version)
-    built = build_model(PhysicsWorld(NO_GRAVITY), parse_sdf_model(text),
-                        (0.0, 0.0, 0.0, 0.0, 0.0, math.pi / 2))
+    text = sdf(
+        model(
+            "m",
+            link("a"),
+            link("b", f"1 0 0 0 0 {math.pi / 2}"),
+            f'<joint name="j" type="revolute"><parent>a</parent><child>b</child>'
+            f"<pose>0 0 0 {math.pi / 2} 0 0</pose><axis>{axis}"
+            f"<limit><lower>-1</lower><upper>1</upper></limit></axis></joint>",
+        ),
+        version,
+    )
+    built = build_model(PhysicsWorld(NO_GRAVITY), parse_sdf_model(text), (0.0, 0.0, 0.0, 0.0, 0.0, math.pi / 2))
     assert built.joint("j").joint.getAxis() == pytest.approx((0.0, 1.0, 0.0), abs=1e-9)
 
 
@@ -208,10 +237,10 @@ def test_link_poses_survive_the_conversion_to_a_joint_tree():
     poses[2][4] = math.pi / 2  # gimbal lock in the parent-to-child rotation
     poses[1][3:] = [0.0, 0.0, 0.0]
     texts = [" ".join(str(v) for v in p) for p in poses]
-    chain = "".join(f'<joint name="j{i}" type="fixed"><parent>l{i}</parent><child>l{i + 1}</child>'
-                    f'</joint>' for i in range(3))
-    robot = parse_sdf_model(sdf(model("m", *(link(f"l{i}", t) for i, t in enumerate(texts)),
-                                      chain)))
+    chain = "".join(
+        f'<joint name="j{i}" type="fixed"><parent>l{i}</parent><child>l{i + 1}</child>' f"</joint>" for i in range(3)
+    )
+    robot = parse_sdf_model(sdf(model("m", *(link(f"l{i}", t) for i, t in enumerate(texts)), chain)))
     spawn = (0.5, -1.0, 2.0, 0.1, 0.2, 0.3)
     built = build_model(PhysicsWorld(NO_GRAVITY), robot, spawn)
     model_frame = (spawn[:3], quat_from_rpy(*spawn[3:]))
@@ -225,14 +254,26 @@ def test_link_poses_survive_the_conversion_to_a_joint_tree():
 
 def test_sphere_dropped_on_static_box_rests_on_top():
     physics = PhysicsWorld()
-    table = parse_sdf_model(sdf(model(
-        "table", link("top", "0 0 0.25 0 0 0", box_collision("1 1 0.5")), static=True)))
+    table = parse_sdf_model(sdf(model("table", link("top", "0 0 0.25 0 0 0", box_collision("1 1 0.5")), static=True)))
     assert table.links["top"].inertial is None
     build_model(physics, table, (2.0, 0.0, 0.0, 0.0, 0.0, 0.0))
-    ball = build_model(physics, parse_sdf_model(sdf(model("ball", link(
-        "ball", extra=inertial(1.0, 0.004)
-        + '<collision name="c"><geometry><sphere><radius>0.1</radius></sphere></geometry>'
-          '</collision>')))), (2.0, 0.0, 1.0, 0.0, 0.0, 0.0))
+    ball = build_model(
+        physics,
+        parse_sdf_model(
+            sdf(
+                model(
+                    "ball",
+                    link(
+                        "ball",
+                        extra=inertial(1.0, 0.004)
+                        + '<collision name="c"><geometry><sphere><radius>0.1</radius></sphere></geometry>'
+                        "</collision>",
+                    ),
+                )
+            )
+        ),
+        (2.0, 0.0, 1.0, 0.0, 0.0, 0.0),
+    )
     for _ in range(1500):
         physics.step()
     assert ball.link_pose("ball")[0] == pytest.approx((2.0, 0.0, 0.6), abs=1e-3)
@@ -256,16 +297,20 @@ def test_free_links_of_a_model_are_separate_bodies():
 
 def test_surface_goes_onto_the_link_geoms():
     physics = PhysicsWorld()
-    surface = ('<surface><friction><ode><mu>0.2</mu></ode></friction>'
-               '<contact><ode><kp>1e5</kp><kd>3</kd></ode></contact></surface>')
-    built = build_model(physics, parse_sdf_model(sdf(model(
-        "m", link("a", extra=inertial() + box_collision("0.1 0.1 0.1", surface))))))
+    surface = (
+        "<surface><friction><ode><mu>0.2</mu></ode></friction>"
+        "<contact><ode><kp>1e5</kp><kd>3</kd></ode></contact></surface>"
+    )
+    built = build_model(
+        physics, parse_sdf_model(sdf(model("m", link("a", extra=inertial() + box_collision("0.1 0.1 0.1", surface)))))
+    )
     assert physics.surface(built.geoms["a"][0]) == SurfaceParams(mu=0.2, mu2=1.0, kp=1e5, kd=3.0)
 
 
 def test_plane_becomes_a_box_below_it_in_static_models_only():
-    plane = ('<collision name="c"><geometry><plane><normal>0 1 0</normal><size>4 2</size>'
-             '</plane></geometry></collision>')
+    plane = (
+        '<collision name="c"><geometry><plane><normal>0 1 0</normal><size>4 2</size>' "</plane></geometry></collision>"
+    )
     robot = parse_sdf_model(sdf(model("wall", link("l", "0 3 0 0 0 0", plane), static=True)))
     collision = robot.links["l"].collisions[0]
     assert collision.geometry == Box((4.0, 2.0, PLANE_THICKNESS))
@@ -276,9 +321,21 @@ def test_plane_becomes_a_box_below_it_in_static_models_only():
 
 
 def test_mesh_collides_as_a_small_box_with_a_warning():
-    robot = parse_sdf_model(sdf(model("m", link("a", extra=inertial() + (
-        '<collision name="c"><geometry><mesh><uri>model://m/base.dae</uri><scale>2 2 2</scale>'
-        '</mesh></geometry></collision>')))))
+    robot = parse_sdf_model(
+        sdf(
+            model(
+                "m",
+                link(
+                    "a",
+                    extra=inertial()
+                    + (
+                        '<collision name="c"><geometry><mesh><uri>model://m/base.dae</uri><scale>2 2 2</scale>'
+                        "</mesh></geometry></collision>"
+                    ),
+                ),
+            )
+        )
+    )
     assert robot.links["a"].collisions[0].geometry == Box((0.02, 0.02, 0.02))
     assert any("model://m/base.dae" in w and "not loaded" in w for w in robot.warnings)
 
@@ -286,7 +343,8 @@ def test_mesh_collides_as_a_small_box_with_a_warning():
 def test_bare_model_plugins_and_missing_inertial():
     robot = parse_sdf_model(
         '<model name="m"><link name="a"/><plugin name="drive" filename="libdrive.so">'
-        '<wheel>left</wheel></plugin></model>')
+        "<wheel>left</wheel></plugin></model>"
+    )
     assert robot.plugin("libdrive.so").params == {"wheel": "left"}
     assert robot.links["a"].inertial.mass == 1.0  # SDF's default
     assert "no <inertial>" in robot.warnings[0]
@@ -313,11 +371,14 @@ def test_bad_xml_reports_line():
         parse_sdf_model('<sdf version="1.6">\n<model name="m">\n<link name="a">\n</model></sdf>')
 
 
-@pytest.mark.parametrize("doctype", [
-    '<!DOCTYPE m [<!ENTITY a "aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">'
-    '<!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;"><!ENTITY d "&c;&c;&c;&c;&c;&c;&c;&c;&c;&c;">]>',
-    '<!DOCTYPE m [<!ENTITY d SYSTEM "file:///etc/passwd">]>',
-])
+@pytest.mark.parametrize(
+    "doctype",
+    [
+        '<!DOCTYPE m [<!ENTITY a "aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">'
+        '<!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;"><!ENTITY d "&c;&c;&c;&c;&c;&c;&c;&c;&c;&c;">]>',
+        '<!DOCTYPE m [<!ENTITY d SYSTEM "file:///etc/passwd">]>',
+    ],
+)
 def test_entities_are_refused(doctype):
     with pytest.raises(ModelError, match="XML guard"):
         parse_sdf_model(f'<?xml version="1.0"?>{doctype}<model name="m"><link name="&d;"/></model>')
@@ -326,80 +387,145 @@ def test_entities_are_refused(doctype):
 
 
 def joint(parent, child, joint_type="revolute", extra="", name="j"):
-    return (f'<joint name="{name}" type="{joint_type}"><parent>{parent}</parent><child>{child}</child>'
-            f'{extra}</joint>')
+    return (
+        f'<joint name="{name}" type="{joint_type}"><parent>{parent}</parent><child>{child}</child>' f"{extra}</joint>"
+    )
 
 
-@pytest.mark.parametrize("body, message", [
-    (model("m", link("a"), joint("missing", "a")), "parent link 'missing' does not exist"),
-    (model("m", link("a"), joint("a", "missing")), "child link 'missing' does not exist"),
-    (model("m", link("a"), joint("world", "a", "fixed")), "joints to the world"),
-    (model("m", link("a"), link("b"), joint("a", "b", "ball")), "unsupported type 'ball'"),
-    (model("m", link("a"), link("b"), joint("a", "b", extra="<axis><xyz>0 0 0</xyz></axis>")),
-     "axis must not be zero"),
-    (model("m", link("a"), link("a")), "duplicate link name 'a'"),
-    (model("m", link("a"), link("b"), link("c"), joint("a", "c"), joint("b", "c", name="k")),
-     "two parents"),
-    (model("m", link("a"), link("b"), joint("a", "b"), joint("a", "b", name="j")),
-     "duplicate joint name 'j'"),
-    (model("m", link("r"), link("a"), link("b"), joint("a", "b"), joint("b", "a", name="k")),
-     "cycle"),
-    (model("m", '<link name="a"><pose relative_to="b">0 0 0 0 0 0</pose></link>'), "relative_to"),
-    (model("m", '<link name="a"><pose>0 0 0</pose></link>'), "expected 6 numbers"),
-    (model("m", link("a", extra="<inertial><mass>0</mass></inertial>")), "mass must be > 0"),
-    (model("m", link("a", extra='<collision name="c"><geometry><heightmap/></geometry>'
-                                '</collision>')), "unsupported geometry"),
-    (model("m", '<model name="inner"><link name="a"/></model>', link("a")), "nested <model>"),
-    (model("m"), "has no <link>"),
-    (model("m", link("a"), link("b"), '<joint name="j" type="fixed"><parent>a</parent></joint>'),
-     "needs <parent> and <child>"),
-    (model("m", link("a"), link("b"), joint(
-        "a", "b", extra="<axis><limit><lower>1</lower><upper>0</upper></limit></axis>")),
-     "lower 1.0 > upper 0.0"),
-    (model("m", link("a", extra='<collision name="c"><geometry><plane><size>1</size></plane>'
-                                '</geometry></collision>'), static=True), "expected 2 numbers"),
-    (model("m", link("a", extra='<collision name="c"><geometry><sphere><radius>-1</radius>'
-                                '</sphere></geometry></collision>')), "must be > 0"),
-    ('<model name="m"><static>maybe</static><link name="a"/></model>', "expected true or false"),
-    ('<world name="w"/>', "parse_sdf_world"),
-])
+@pytest.mark.parametrize(
+    "body, message",
+    [
+        (model("m", link("a"), joint("missing", "a")), "parent link 'missing' does not exist"),
+        (model("m", link("a"), joint("a", "missing")), "child link 'missing' does not exist"),
+        (model("m", link("a"), joint("world", "a", "fixed")), "joints to the world"),
+        (model("m", link("a"), link("b"), joint("a", "b", "ball")), "unsupported type 'ball'"),
+        (
+            model("m", link("a"), link("b"), joint("a", "b", extra="<axis><xyz>0 0 0</xyz></axis>")),
+            "axis must not be zero",
+        ),
+        (model("m", link("a"), link("a")), "duplicate link name 'a'"),
+        (model("m", link("a"), link("b"), link("c"), joint("a", "c"), joint("b", "c", name="k")), "two parents"),
+        (model("m", link("a"), link("b"), joint("a", "b"), joint("a", "b", name="j")), "duplicate joint name 'j'"),
+        (model("m", link("r"), link("a"), link("b"), joint("a", "b"), joint("b", "a", name="k")), "cycle"),
+        (model("m", '<link name="a"><pose relative_to="b">0 0 0 0 0 0</pose></link>'), "relative_to"),
+        (model("m", '<link name="a"><pose>0 0 0</pose></link>'), "expected 6 numbers"),
+        (model("m", link("a", extra="<inertial><mass>0</mass></inertial>")), "mass must be > 0"),
+        (
+            model("m", link("a", extra='<collision name="c"><geometry><heightmap/></geometry>' "</collision>")),
+            "unsupported geometry",
+        ),
+        (model("m", '<model name="inner"><link name="a"/></model>', link("a")), "nested <model>"),
+        (model("m"), "has no <link>"),
+        (
+            model("m", link("a"), link("b"), '<joint name="j" type="fixed"><parent>a</parent></joint>'),
+            "needs <parent> and <child>",
+        ),
+        (
+            model(
+                "m",
+                link("a"),
+                link("b"),
+                joint("a", "b", extra="<axis><limit><lower>1</lower><upper>0</upper></limit></axis>"),
+            ),
+            "lower 1.0 > upper 0.0",
+        ),
+        (
+            model(
+                "m",
+                link(
+                    "a", extra='<collision name="c"><geometry><plane><size>1</size></plane>' "</geometry></collision>"
+                ),
+                static=True,
+            ),
+            "expected 2 numbers",
+        ),
+        (
+            model(
+                "m",
+                link(
+                    "a",
+                    extra='<collision name="c"><geometry><sphere><radius>-1</radius>'
+                    "</sphere></geometry></collision>",
+                ),
+            ),
+            "must be > 0",
+        ),
+        ('<model name="m"><static>maybe</static><link name="a"/></model>', "expected true or false"),
+        ('<world name="w"/>', "parse_sdf_world"),
+    ],
+)
 def test_model_errors(body, message):
     with pytest.raises(ModelError, match=message):
         parse_sdf_model(sdf(body))
 
 
-@pytest.mark.parametrize("text, message", [
-    (sdf(model("m", link("a")), "1.8"), "version 1.8 is not supported"),
-    (sdf(model("m", link("a")), "one"), "expected a version"),
-    (sdf(model("m", link("a"), link("b"), joint(
-        "a", "b", extra='<axis><xyz expressed_in="f">1 0 0</xyz></axis>')), "1.7"),
-     "expressed_in='f'"),
-    ('<robot name="r"/>', "root element"),
-    (sdf(model("m", link("a")) + model("n", link("a"))), "expected one <model>"),
-])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        (sdf(model("m", link("a")), "1.8"), "version 1.8 is not supported"),
+        (sdf(model("m", link("a")), "one"), "expected a version"),
+        (
+            sdf(
+                model(
+                    "m", link("a"), link("b"), joint("a", "b", extra='<axis><xyz expressed_in="f">1 0 0</xyz></axis>')
+                ),
+                "1.7",
+            ),
+            "expressed_in='f'",
+        ),
+        ('<robot name="r"/>', "root element"),
+        (sdf(model("m", link("a")) + model("n", link("a"))), "expected one <model>"),
+    ],
+)
 def test_document_errors(text, message):
     with pytest.raises(ModelError, match=message):
         parse_sdf_model(text)
 
 
 def test_unsupported_parts_are_warned_about():
-    surface = '<surface><friction><ode><mu>{}</mu></ode></friction></surface>'
-    robot = parse_sdf_model(sdf(model(
-        "m", "<self_collide>true</self_collide>",
-        link("a", extra=inertial() + "<kinematic>true</kinematic>"
-             + box_collision("1 1 1", surface.format(0.5)) + box_collision("1 1 1", surface.format(0.7))),
-        link("b"), joint("a", "b", extra="<axis><dynamics><spring_stiffness>5</spring_stiffness>"
-                                         "</dynamics></axis>"))))
+    surface = "<surface><friction><ode><mu>{}</mu></ode></friction></surface>"
+    robot = parse_sdf_model(
+        sdf(
+            model(
+                "m",
+                "<self_collide>true</self_collide>",
+                link(
+                    "a",
+                    extra=inertial()
+                    + "<kinematic>true</kinematic>"
+                    + box_collision("1 1 1", surface.format(0.5))
+                    + box_collision("1 1 1", surface.format(0.7)),
+                ),
+                link("b"),
+                joint("a", "b", extra="<axis><dynamics><spring_stiffness>5</spring_stiffness>" "</dynamics></axis>"),
+            )
+        )
+    )
     assert robot.surfaces["a"].mu1 == 0.7
-    for expected in ("<kinematic> is not supported", "different <surface> values",
-                     "<spring_stiffness> is not supported", "<self_collide> is not applied"):
+    for expected in (
+        "<kinematic> is not supported",
+        "different <surface> values",
+        "<spring_stiffness> is not supported",
+        "<self_collide> is not applied",
+    ):
         assert any(expected in w for w in robot.warnings), expected
 
 
 def test_bad_surface_leaves_the_static_space_clean():
     physics = PhysicsWorld()
-    robot = parse_sdf_model(sdf(model("m", link("a", extra=box_collision("1 1 1") + box_collision(
-        "1 1 1", '<surface><friction><ode><mu>-1</mu></ode></friction></surface>')), static=True)))
+    robot = parse_sdf_model(
+        sdf(
+            model(
+                "m",
+                link(
+                    "a",
+                    extra=box_collision("1 1 1")
+                    + box_collision("1 1 1", "<surface><friction><ode><mu>-1</mu></ode></friction></surface>"),
+                ),
+                static=True,
+            )
+        )
+    )
     with pytest.raises(ValueError, match="mu"):
         build_model(physics, robot)
     assert physics.static_space.getNumGeoms() == 0
@@ -407,12 +533,14 @@ def test_bad_surface_leaves_the_static_space_clean():
 
 def test_world_errors():
     with pytest.raises(ModelError, match="two models are named 'm'"):
-        parse_sdf_world(sdf(f'<world name="w">{model("m", link("a"))}{model("m", link("a"))}'
-                            f'</world>'))
-    for physics, message in (("<max_step_size>0</max_step_size>", "must be > 0"),
-                             ("<ode><solver><iters>2.5</iters></solver></ode>", "positive integer")):
+        parse_sdf_world(sdf(f'<world name="w">{model("m", link("a"))}{model("m", link("a"))}' f"</world>"))
+    for physics, message in (
+        ("<max_step_size>0</max_step_size>", "must be > 0"),
+        ("<ode><solver><iters>2.5</iters></solver></ode>", "positive integer"),
+    ):
         with pytest.raises(ModelError, match=message):
             parse_sdf_world(sdf(f'<world name="w"><physics type="ode">{physics}</physics></world>'))
     with pytest.raises(ModelError, match="quick or world"):
-        parse_sdf_world(sdf('<world name="w"><physics type="ode"><ode><solver><type>pgs</type>'
-                            '</solver></ode></physics></world>'))
+        parse_sdf_world(
+            sdf('<world name="w"><physics type="ode"><ode><solver><type>pgs</type>' "</solver></ode></physics></world>")
+        )

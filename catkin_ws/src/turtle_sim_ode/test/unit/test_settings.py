@@ -14,9 +14,18 @@ def test_defaults_match_the_documented_ones():
 
 
 def test_values_are_taken():
-    settings = settings_from_params({"real_time_factor": 0, "paused": True, "time_step": 0.01, "solver": "world",
-                                     "gravity": [0, 0, -1.62], "spawn_x": 1, "spawn_yaw": 0.5,
-                                     "diff_drive": {"cmd_timeout": 1.0, "odometry_integration": "exact"}})
+    settings = settings_from_params(
+        {
+            "real_time_factor": 0,
+            "paused": True,
+            "time_step": 0.01,
+            "solver": "world",
+            "gravity": [0, 0, -1.62],
+            "spawn_x": 1,
+            "spawn_yaw": 0.5,
+            "diff_drive": {"cmd_timeout": 1.0, "odometry_integration": "exact"},
+        }
+    )
     assert settings.real_time_factor == 0.0 and settings.paused
     assert settings.physics.time_step == 0.01 and settings.physics.solver == "world"
     assert settings.physics.gravity == (0.0, 0.0, -1.62)
@@ -24,27 +33,30 @@ def test_values_are_taken():
     assert settings.drive_overrides == {"cmd_timeout": 1.0, "odometry_integration": "exact"}
 
 
-@pytest.mark.parametrize("params, message", [
-    ({"time_step": 0}, "~time_step must be in (0, 0.1] s"),
-    ({"time_step": -0.001}, "~time_step"),
-    ({"time_step": "fast"}, "~time_step must be a finite number, got ['fast']"),
-    ({"time_step": float("nan")}, "~time_step must be a finite number"),
-    ({"solver": "fast"}, "~solver must be one of"),
-    ({"solver_iterations": 10 ** 6}, "~solver_iterations must be an integer in 1..1000"),
-    ({"solver_iterations": 2.5}, "~solver_iterations must be of type int"),
-    ({"gravity": [0, 0]}, "~gravity must be a list of 3 numbers"),
-    ({"gravity": [0, 0, float("nan")]}, "~gravity must be a finite number"),
-    ({"real_time_factor": -1}, "~real_time_factor must be >= 0.0, got [-1]"),
-    ({"paused": "yes"}, "~paused must be of type bool"),
-    ({"pub_clock_frequency": 0}, "~pub_clock_frequency must be > 0.0"),
-    ({"publish_rate": True}, "~publish_rate must be a finite number"),
-    ({"odom_frame": ""}, "~odom_frame must not be empty"),
-    ({"base_frame": 3}, "~base_frame must be of type str"),
-    ({"spawn_x": "left"}, "~spawn_x must be a finite number"),
-    ({"diff_drive": {"top_speed": 1}}, "~diff_drive has unknown keys ['top_speed']"),
-    ({"diff_drive": {"cmd_timeout": -1}}, "~cmd_timeout must be >= 0.0"),
-    ({"diff_drive": 5}, "~diff_drive must be a dictionary"),
-])
+@pytest.mark.parametrize(
+    "params, message",
+    [
+        ({"time_step": 0}, "~time_step must be in (0, 0.1] s"),
+        ({"time_step": -0.001}, "~time_step"),
+        ({"time_step": "fast"}, "~time_step must be a finite number, got ['fast']"),
+        ({"time_step": float("nan")}, "~time_step must be a finite number"),
+        ({"solver": "fast"}, "~solver must be one of"),
+        ({"solver_iterations": 10**6}, "~solver_iterations must be an integer in 1..1000"),
+        ({"solver_iterations": 2.5}, "~solver_iterations must be of type int"),
+        ({"gravity": [0, 0]}, "~gravity must be a list of 3 numbers"),
+        ({"gravity": [0, 0, float("nan")]}, "~gravity must be a finite number"),
+        ({"real_time_factor": -1}, "~real_time_factor must be >= 0.0, got [-1]"),
+        ({"paused": "yes"}, "~paused must be of type bool"),
+        ({"pub_clock_frequency": 0}, "~pub_clock_frequency must be > 0.0"),
+        ({"publish_rate": True}, "~publish_rate must be a finite number"),
+        ({"odom_frame": ""}, "~odom_frame must not be empty"),
+        ({"base_frame": 3}, "~base_frame must be of type str"),
+        ({"spawn_x": "left"}, "~spawn_x must be a finite number"),
+        ({"diff_drive": {"top_speed": 1}}, "~diff_drive has unknown keys ['top_speed']"),
+        ({"diff_drive": {"cmd_timeout": -1}}, "~cmd_timeout must be >= 0.0"),
+        ({"diff_drive": 5}, "~diff_drive must be a dictionary"),
+    ],
+)
 def test_bad_values_are_named(params, message):
     with pytest.raises(SettingsError) as error:
         settings_from_params(params)

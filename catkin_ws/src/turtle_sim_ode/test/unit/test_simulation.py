@@ -28,13 +28,19 @@ def test_spawn_and_delete():
         sim.delete("box")
 
 
-@pytest.mark.parametrize("name, urdf, message", [
-    ("", BOX_URDF, "model name is empty"),
-    ("mobile_base", BOX_URDF, "a model named 'mobile_base' already exists"),
-    ("broken", "<robot", "line 1"),
-    ("wrong_joint", TURTLEBOT_URDF.replace("<left_wheel_joint_name>wheel_left_joint",
-                                           "<left_wheel_joint_name>no_such_joint"), "no_such_joint"),
-])
+@pytest.mark.parametrize(
+    "name, urdf, message",
+    [
+        ("", BOX_URDF, "model name is empty"),
+        ("mobile_base", BOX_URDF, "a model named 'mobile_base' already exists"),
+        ("broken", "<robot", "line 1"),
+        (
+            "wrong_joint",
+            TURTLEBOT_URDF.replace("<left_wheel_joint_name>wheel_left_joint", "<left_wheel_joint_name>no_such_joint"),
+            "no_such_joint",
+        ),
+    ],
+)
 def test_bad_spawns_leave_the_world_unchanged(name, urdf, message):
     sim = Simulation()
     sim.spawn_urdf("mobile_base", TURTLEBOT_URDF)

@@ -16,16 +16,18 @@ YAW_90 = (0.0, 0.0, math.sqrt(0.5), math.sqrt(0.5))  # (x, y, z, w)
 
 
 def inertial(mass, xyz="0 0 0", moment=0.1):
-    return (f'<inertial><mass value="{mass}"/><origin xyz="{xyz}"/><inertia ixx="{moment}" ixy="0" '
-            f'ixz="0" iyy="{moment}" iyz="0" izz="{moment}"/></inertial>')
+    return (
+        f'<inertial><mass value="{mass}"/><origin xyz="{xyz}"/><inertia ixx="{moment}" ixy="0" '
+        f'ixz="0" iyy="{moment}" iyz="0" izz="{moment}"/></inertial>'
+    )
 
 
-BOX = f'''<robot name="box"><link name="box">{inertial(1.0)}
-<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>'''
+BOX = f"""<robot name="box"><link name="box">{inertial(1.0)}
+<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>"""
 
 # A heavy base; "upper" turns about z 0.5 m up, with "tip" fixed 1 m along it (turned 90 degrees)
 # and "slide" on a rail along it; "wheel" spins about y beside the base.
-ARM = f'''<robot name="arm">
+ARM = f"""<robot name="arm">
   <link name="base">{inertial(10.0, moment=10.0)}</link>
   <link name="upper">{inertial(1.0, "0.5 0 0")}</link>
   <link name="tip">{inertial(0.5)}</link>
@@ -39,20 +41,20 @@ ARM = f'''<robot name="arm">
     <origin xyz="0.5 0 0"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
   <joint name="spin" type="continuous"><parent link="base"/><child link="wheel"/>
     <origin xyz="0 -0.5 0"/><axis xyz="0 1 0"/></joint>
-</robot>'''
+</robot>"""
 
 # No continuous joint and no damping: the model starts without a post-step hook.
-PENDULUM = f'''<robot name="pendulum">
+PENDULUM = f"""<robot name="pendulum">
   <link name="base">{inertial(100.0, moment=100.0)}</link>
   <link name="bar">{inertial(1.0, "0.5 0 0")}</link>
   <joint name="hinge" type="revolute"><parent link="base"/><child link="bar"/>
     <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-</robot>'''
+</robot>"""
 
-SDF_BOX = '''<sdf version="1.6"><model name="crate"><link name="link"><inertial><mass>2</mass>
+SDF_BOX = """<sdf version="1.6"><model name="crate"><link name="link"><inertial><mass>2</mass>
 <inertia><ixx>0.1</ixx><iyy>0.1</iyy><izz>0.1</izz></inertia></inertial>
 <collision name="c"><geometry><box><size>0.3 0.3 0.3</size></box></geometry></collision>
-</link></model></sdf>'''
+</link></model></sdf>"""
 
 
 def run(sim, seconds):
@@ -74,29 +76,37 @@ def floating(*models):
 
 def snapshot(sim):
     """Everything a failed request must leave alone."""
-    return ({name: [sim.get_link_state(f"{name}::{link}") for link in model.links]
-             for name, model in sim.models.items()},
-            sim.physics_properties(), list(sim.loads), sim.sim_time)
+    return (
+        {name: [sim.get_link_state(f"{name}::{link}") for link in model.links] for name, model in sim.models.items()},
+        sim.physics_properties(),
+        list(sim.loads),
+        sim.sim_time,
+    )
 
 
 # --- names and errors --------------------------------------------------------------------------
-@pytest.mark.parametrize("call, message", [
-    (lambda s: s.get_model_state("nobody"), "model 'nobody' does not exist"),
-    (lambda s: s.get_model_state("box", "nowhere"), "reference frame 'nowhere' is not a model or link"),
-    (lambda s: s.get_link_state("box"), "link 'box' does not exist (links are named 'model::link')"),
-    (lambda s: s.get_link_state("box::nolink"), "link 'box::nolink' does not exist"),
-    (lambda s: s.set_link_state("arm::tip", (0, 0, 0), (0, 0, 0, 1), reference_frame="arm::x"),
-     "reference frame 'arm::x' is not a model or link"),
-    (lambda s: s.joint_properties("elbow"), "joint 'elbow' does not exist"),
-    (lambda s: s.set_model_state("box", (0, 0, math.nan), (0, 0, 0, 1)),
-     "position must be 3 finite numbers"),
-    (lambda s: s.set_model_state("box", (0, 0, 1), (0, 0, math.inf, 1)),
-     "orientation must be 4 finite numbers"),
-    (lambda s: s.set_model_state("box", (0, 0, 1), (0, 0, 0, 1), (1, 2)),
-     "linear velocity must be 3 finite numbers"),
-    (lambda s: s.model_properties("arm::base"), "model 'arm::base' does not exist"),
-    (lambda s: s.delete("ghost"), "model 'ghost' does not exist"),
-])
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda s: s.get_model_state("nobody"), "model 'nobody' does not exist"),
+        (lambda s: s.get_model_state("box", "nowhere"), "reference frame 'nowhere' is not a model or link"),
+        (lambda s: s.get_link_state("box"), "link 'box' does not exist (links are named 'model::link')"),
+        (lambda s: s.get_link_state("box::nolink"), "link 'box::nolink' does not exist"),
+        (
+            lambda s: s.set_link_state("arm::tip", (0, 0, 0), (0, 0, 0, 1), reference_frame="arm::x"),
+            "reference frame 'arm::x' is not a model or link",
+        ),
+        (lambda s: s.joint_properties("elbow"), "joint 'elbow' does not exist"),
+        (lambda s: s.set_model_state("box", (0, 0, math.nan), (0, 0, 0, 1)), "position must be 3 finite numbers"),
+        (lambda s: s.set_model_state("box", (0, 0, 1), (0, 0, math.inf, 1)), "orientation must be 4 finite numbers"),
+        (
+            lambda s: s.set_model_state("box", (0, 0, 1), (0, 0, 0, 1), (1, 2)),
+            "linear velocity must be 3 finite numbers",
+        ),
+        (lambda s: s.model_properties("arm::base"), "model 'arm::base' does not exist"),
+        (lambda s: s.delete("ghost"), "model 'ghost' does not exist"),
+    ],
+)
 def test_unknown_names_and_bad_values_raise_and_change_nothing(call, message):
     sim = floating(("box", BOX, (0, 0, 1, 0, 0, 0)), ("arm", ARM, (3, 0, 1, 0, 0, 0)))
     run(sim, 0.01)
@@ -157,8 +167,7 @@ def test_state_relative_to_a_moving_model_follows_gazebo_ros():
 
 @pytest.mark.parametrize("frame", ["a", "a::box", "arm::tip"])
 def test_set_then_get_relative_to_a_frame_round_trips(frame):
-    sim = floating(("a", BOX, (0, 0, 1, 0.3, 0, 1.0)), ("b", BOX, (1, 0, 1, 0, 0, 0)),
-                   ("arm", ARM, (3, 0, 1, 0, 0, 0)))
+    sim = floating(("a", BOX, (0, 0, 1, 0.3, 0, 1.0)), ("b", BOX, (1, 0, 1, 0, 0, 0)), ("arm", ARM, (3, 0, 1, 0, 0, 0)))
     sim.set_model_state("a", (0, 0, 1), (0.1, 0, 0.3, 1), (0.2, 0.1, 0), (0.1, 0, 0.4))
     state = ((0.5, -0.2, 0.1), (0.0, 0.0, math.sin(0.2), math.cos(0.2)), (0.3, 0.0, -0.1), (0.0, 0.2, 0.1))
     sim.set_model_state("b", *state, reference_frame=frame)
@@ -209,9 +218,11 @@ def test_static_models_move_but_have_no_bodies_to_push():
     position, _, linear, _ = sim.get_model_state("obstacle_box")
     assert position == pytest.approx((-1, 2, 0.25)) and linear == (0.0, 0.0, 0.0)
     assert sim.model_properties("walls")["is_static"]
-    for call in (lambda: sim.link_properties("walls::wall_east"),
-                 lambda: sim.apply_body_wrench("walls::wall_east", "", (0, 0, 0), (1, 0, 0), (0, 0, 0)),
-                 lambda: sim.set_link_state("walls::wall_east", (0, 0, 0), (0, 0, 0, 1))):
+    for call in (
+        lambda: sim.link_properties("walls::wall_east"),
+        lambda: sim.apply_body_wrench("walls::wall_east", "", (0, 0, 0), (1, 0, 0), (0, 0, 0)),
+        lambda: sim.set_link_state("walls::wall_east", (0, 0, 0), (0, 0, 0, 1)),
+    ):
         with pytest.raises(WorldError, match="belongs to static model 'walls'"):
             call()
 
@@ -222,7 +233,9 @@ def test_link_properties_are_the_merged_body_in_the_link_frame():
     upper = sim.link_properties("arm::upper")
     assert upper["mass"] == pytest.approx(1.5) and upper["gravity_mode"]
     assert upper["com_position"] == pytest.approx((2 / 3, 0, 0)) and upper["com_orientation"] == (0, 0, 0, 1)
-    assert (upper["ixx"], upper["iyy"], upper["izz"]) == pytest.approx((0.2, 0.2 + 1 / 36 + 0.5 / 9, 0.2 + 1 / 36 + 0.5 / 9))
+    assert (upper["ixx"], upper["iyy"], upper["izz"]) == pytest.approx(
+        (0.2, 0.2 + 1 / 36 + 0.5 / 9, 0.2 + 1 / 36 + 0.5 / 9)
+    )
     tip = sim.link_properties("arm::tip")  # same body, seen from a frame turned 90 degrees
     assert tip["mass"] == pytest.approx(1.5)
     assert tip["com_position"] == pytest.approx((0, 1 / 3, 0), abs=1e-12)
@@ -247,11 +260,14 @@ def test_set_link_properties_moves_the_com_but_not_the_links_or_joints():
         assert sim.get_link_state(f"arm::{link}")[0] == pytest.approx(position, abs=1e-6)
 
 
-@pytest.mark.parametrize("mass, inertia, message", [
-    (0.0, (0.1, 0, 0, 0.1, 0, 0.1), "mass must be > 0"),
-    (1.0, (0.1, 0.2, 0, 0.1, 0, 0.1), "inertia must be positive definite"),
-    (1.0, (0.1, 0, 0, math.nan, 0, 0.1), "inertia .* must be 6 finite numbers"),
-])
+@pytest.mark.parametrize(
+    "mass, inertia, message",
+    [
+        (0.0, (0.1, 0, 0, 0.1, 0, 0.1), "mass must be > 0"),
+        (1.0, (0.1, 0.2, 0, 0.1, 0, 0.1), "inertia must be positive definite"),
+        (1.0, (0.1, 0, 0, math.nan, 0, 0.1), "inertia .* must be 6 finite numbers"),
+    ],
+)
 def test_set_link_properties_rejects_bad_mass_properties(mass, inertia, message):
     sim = floating(("box", BOX, (0, 0, 1, 0, 0, 0)))
     before = sim.link_properties("box::box")
@@ -273,8 +289,7 @@ def test_joint_properties_types_positions_and_rates():
 def test_set_joint_properties_sets_ode_params_and_limits_motion():
     sim = floating(("arm", ARM, (0, 0, 1, 0, 0, 0)))
     # lists as in gazebo_msgs/ODEJointProperties (first entry used) or plain numbers
-    sim.set_joint_properties("arm::shoulder", hiStop=[0.2, 9.0], loStop=-0.2, stop_erp=[0.5],
-                             fudge_factor=0.5, cfm=[])
+    sim.set_joint_properties("arm::shoulder", hiStop=[0.2, 9.0], loStop=-0.2, stop_erp=[0.5], fudge_factor=0.5, cfm=[])
     joint = sim.models["arm"].joints["shoulder"].joint
     assert joint.getParam(oc.PARAM_HI_STOP) == 0.2 and joint.getParam(oc.PARAM_LO_STOP) == -0.2
     assert joint.getParam(oc.PARAM_STOP_ERP) == 0.5 and joint.getParam(oc.PARAM_FUDGE_FACTOR) == 0.5
@@ -300,13 +315,16 @@ def test_set_joint_damping_slows_a_joint_down():
     assert sim.joint_properties("hinge")["damping"] == [0.0]
 
 
-@pytest.mark.parametrize("values, message", [
-    ({"loStop": [0.5], "hiStop": [0.1]}, "loStop 0.5 must not exceed hiStop 0.1"),
-    ({"erp": 2.0}, r"erp must be in \[0, 1\]"),
-    ({"fmax": [math.nan]}, "fmax must be a finite number"),
-    ({"damping": [-1.0]}, "damping must be >= 0"),
-    ({"hiStop": [math.nan]}, "hiStop must be a number"),
-])
+@pytest.mark.parametrize(
+    "values, message",
+    [
+        ({"loStop": [0.5], "hiStop": [0.1]}, "loStop 0.5 must not exceed hiStop 0.1"),
+        ({"erp": 2.0}, r"erp must be in \[0, 1\]"),
+        ({"fmax": [math.nan]}, "fmax must be a finite number"),
+        ({"damping": [-1.0]}, "damping must be >= 0"),
+        ({"hiStop": [math.nan]}, "hiStop must be a number"),
+    ],
+)
 def test_set_joint_properties_rejects_bad_values(values, message):
     sim = floating(("arm", ARM, (0, 0, 1, 0, 0, 0)))
     joint = sim.models["arm"].joints["shoulder"].joint
@@ -320,8 +338,12 @@ def test_set_joint_properties_rejects_bad_values(values, message):
 def physics_arguments(properties, **changes):
     """set_physics_properties keywords from a physics_properties() dict, with ``changes``."""
     config = dict(properties["ode_config"])
-    arguments = {"time_step": properties["time_step"], "max_update_rate": properties["max_update_rate"],
-                 "gravity": properties["gravity"], "iterations": config.pop("sor_pgs_iters")}
+    arguments = {
+        "time_step": properties["time_step"],
+        "max_update_rate": properties["max_update_rate"],
+        "gravity": properties["gravity"],
+        "iterations": config.pop("sor_pgs_iters"),
+    }
     arguments.update(config)
     arguments.update(changes)
     return arguments
@@ -329,17 +351,36 @@ def physics_arguments(properties, **changes):
 
 def test_physics_properties_report_the_world():
     assert Simulation().physics_properties() == {
-        "time_step": 0.001, "max_update_rate": 1000.0, "gravity": (0.0, 0.0, -9.81),
-        "ode_config": {"auto_disable_bodies": False, "sor_pgs_precon_iters": 0, "sor_pgs_iters": 50,
-                       "sor_pgs_w": 1.3, "sor_pgs_rms_error_tol": 0.0, "contact_surface_layer": 0.0001,
-                       "contact_max_correcting_vel": 0.1, "cfm": 1e-5, "erp": 0.2, "max_contacts": 4}}
+        "time_step": 0.001,
+        "max_update_rate": 1000.0,
+        "gravity": (0.0, 0.0, -9.81),
+        "ode_config": {
+            "auto_disable_bodies": False,
+            "sor_pgs_precon_iters": 0,
+            "sor_pgs_iters": 50,
+            "sor_pgs_w": 1.3,
+            "sor_pgs_rms_error_tol": 0.0,
+            "contact_surface_layer": 0.0001,
+            "contact_max_correcting_vel": 0.1,
+            "cfm": 1e-5,
+            "erp": 0.2,
+            "max_contacts": 4,
+        },
+    }
 
 
 def test_set_physics_properties_applies_to_the_live_world():
     sim = Simulation()
     sim.spawn_urdf("box", BOX, (0, 0, 5, 0, 0, 0))
-    arguments = physics_arguments(sim.physics_properties(), max_update_rate=500.0, gravity=(0.0, 0.0, -1.0),
-                                  iterations=20, erp=0.5, cfm=1e-4, max_contacts=10)
+    arguments = physics_arguments(
+        sim.physics_properties(),
+        max_update_rate=500.0,
+        gravity=(0.0, 0.0, -1.0),
+        iterations=20,
+        erp=0.5,
+        cfm=1e-4,
+        max_contacts=10,
+    )
     assert sim.set_physics_properties(**arguments) == []
     world = sim.physics.world
     assert world.getGravity() == (0.0, 0.0, -1.0) and world.getQuickStepNumIterations() == 20
@@ -366,15 +407,18 @@ def test_time_step_change_keeps_sim_time_continuous():
     assert sim.sim_time == 0.0
 
 
-@pytest.mark.parametrize("change, message", [
-    ({"time_step": 0.0}, r"time_step must be in \(0, 0.1\]"),
-    ({"gravity": (0.0, math.nan, -9.81)}, "gravity must be 3 finite numbers"),
-    ({"iterations": 10 ** 6}, r"iterations must be an integer in 1..1000"),
-    ({"erp": 2.0}, r"erp must be in \[0, 1\]"),
-    ({"max_contacts": 2.5}, "max_contacts must be an integer"),
-    ({"max_update_rate": -1.0}, "max_update_rate must be >= 0"),
-    ({"sor_pgs_w": math.inf}, "sor_pgs_w must be a finite number"),
-])
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        ({"time_step": 0.0}, r"time_step must be in \(0, 0.1\]"),
+        ({"gravity": (0.0, math.nan, -9.81)}, "gravity must be 3 finite numbers"),
+        ({"iterations": 10**6}, r"iterations must be an integer in 1..1000"),
+        ({"erp": 2.0}, r"erp must be in \[0, 1\]"),
+        ({"max_contacts": 2.5}, "max_contacts must be an integer"),
+        ({"max_update_rate": -1.0}, "max_update_rate must be >= 0"),
+        ({"sor_pgs_w": math.inf}, "sor_pgs_w must be a finite number"),
+    ],
+)
 def test_set_physics_properties_rejects_bad_values_and_changes_nothing(change, message):
     sim = Simulation()
     sim.spawn_urdf("box", BOX, (0, 0, 0.1, 0, 0, 0))
@@ -389,7 +433,9 @@ def test_set_physics_properties_warns_about_settings_it_keeps():
     sim = Simulation()
     arguments = physics_arguments(sim.physics_properties(), auto_disable_bodies=True, sor_pgs_w=1.0)
     assert sim.set_physics_properties(**arguments) == [
-        "auto_disable_bodies is not supported: bodies stay enabled", "sor_pgs_w is fixed at 1.3: ignored"]
+        "auto_disable_bodies is not supported: bodies stay enabled",
+        "sor_pgs_w is fixed at 1.3: ignored",
+    ]
 
 
 # --- model configuration ---------------------------------------------------------------------
@@ -426,11 +472,14 @@ def test_set_model_configuration_keeps_drive_odometry():
     assert sim.robots["robot"].odometry.pose == (0.0, 0.0, 0.0)
 
 
-@pytest.mark.parametrize("names, positions, message", [
-    (["shoulder", "elbow"], [0.1, 0.2], "model 'arm' has no joint 'elbow'"),
-    (["shoulder"], [0.1, 0.2], "different lengths"),
-    (["shoulder"], [math.nan], "position of joint 'shoulder' must be a finite number"),
-])
+@pytest.mark.parametrize(
+    "names, positions, message",
+    [
+        (["shoulder", "elbow"], [0.1, 0.2], "model 'arm' has no joint 'elbow'"),
+        (["shoulder"], [0.1, 0.2], "different lengths"),
+        (["shoulder"], [math.nan], "position of joint 'shoulder' must be a finite number"),
+    ],
+)
 def test_set_model_configuration_errors_change_nothing(names, positions, message):
     sim = floating(("arm", ARM, (0, 0, 1, 0, 0, 0)))
     before = snapshot(sim)
@@ -469,8 +518,9 @@ def test_wrench_in_another_frame_adds_its_lever():
 
 
 def test_wrench_scheduling_start_time_zero_duration_and_clearing():
-    sim = floating(("late", BOX, (0, 0, 1, 0, 0, 0)), ("once", BOX, (2, 0, 1, 0, 0, 0)),
-                   ("forever", BOX, (4, 0, 1, 0, 0, 0)))
+    sim = floating(
+        ("late", BOX, (0, 0, 1, 0, 0, 0)), ("once", BOX, (2, 0, 1, 0, 0, 0)), ("forever", BOX, (4, 0, 1, 0, 0, 0))
+    )
     sim.apply_body_wrench("late::box", "", (0, 0, 0), (10, 0, 0), (0, 0, 0), 0.05, 0.05)
     sim.apply_body_wrench("once::box", "", (0, 0, 0), (10, 0, 0), (0, 0, 0), 0.0, 0.0)
     sim.apply_body_wrench("forever::box", "world", (0, 0, 0), (10, 0, 0), (0, 0, 0), -3.0, -1.0)
@@ -514,19 +564,28 @@ def test_clear_joint_forces_unscoped_clears_every_model():
     assert sim.loads == []
 
 
-@pytest.mark.parametrize("call, message", [
-    (lambda s: s.apply_body_wrench("box::box", "", (0, 0, 0), (math.nan, 0, 0), (0, 0, 0)),
-     "force must be 3 finite numbers"),
-    (lambda s: s.apply_body_wrench("box::box", "", (0, 0, 0), (1, 0, 0), (0, 0, 0), math.inf),
-     "start_time must be a finite number"),
-    (lambda s: s.apply_body_wrench("box::box", "sky", (0, 0, 0), (1, 0, 0), (0, 0, 0)),
-     "reference frame 'sky' is not a model or link"),
-    (lambda s: s.apply_body_wrench("box", "", (0, 0, 0), (1, 0, 0), (0, 0, 0)), "link 'box' does not exist"),
-    (lambda s: s.apply_joint_effort("arm::spin", 1.0, 0.0, math.nan), "duration must be a finite number"),
-    (lambda s: s.apply_joint_effort("wheel", 1.0), "joint 'wheel' does not exist"),
-    (lambda s: s.clear_joint_forces("nothing"), "joint 'nothing' does not exist"),
-    (lambda s: s.clear_body_wrenches("arm::nothing"), "link 'arm::nothing' does not exist"),
-])
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (
+            lambda s: s.apply_body_wrench("box::box", "", (0, 0, 0), (math.nan, 0, 0), (0, 0, 0)),
+            "force must be 3 finite numbers",
+        ),
+        (
+            lambda s: s.apply_body_wrench("box::box", "", (0, 0, 0), (1, 0, 0), (0, 0, 0), math.inf),
+            "start_time must be a finite number",
+        ),
+        (
+            lambda s: s.apply_body_wrench("box::box", "sky", (0, 0, 0), (1, 0, 0), (0, 0, 0)),
+            "reference frame 'sky' is not a model or link",
+        ),
+        (lambda s: s.apply_body_wrench("box", "", (0, 0, 0), (1, 0, 0), (0, 0, 0)), "link 'box' does not exist"),
+        (lambda s: s.apply_joint_effort("arm::spin", 1.0, 0.0, math.nan), "duration must be a finite number"),
+        (lambda s: s.apply_joint_effort("wheel", 1.0), "joint 'wheel' does not exist"),
+        (lambda s: s.clear_joint_forces("nothing"), "joint 'nothing' does not exist"),
+        (lambda s: s.clear_body_wrenches("arm::nothing"), "link 'arm::nothing' does not exist"),
+    ],
+)
 def test_bad_loads_are_refused(call, message):
     sim = floating(("box", BOX, (0, 0, 1, 0, 0, 0)), ("arm", ARM, (3, 0, 1, 0, 0, 0)))
     sim.apply_joint_effort("arm::spin", 0.01)
@@ -564,7 +623,7 @@ def test_spawn_with_a_quaternion_pose_relative_to_a_model():
     assert list(sim.models) == ["a", "crate"]
 
 
-WORLD = '''<sdf version="1.6"><world name="w">
+WORLD = """<sdf version="1.6"><world name="w">
   <include><uri>model://ground_plane</uri></include>
   <include><uri>model://table</uri><name>table1</name></include>
   <physics type="ode"><max_step_size>0.002</max_step_size><real_time_factor>2</real_time_factor>
@@ -574,14 +633,16 @@ WORLD = '''<sdf version="1.6"><world name="w">
     <collision name="c"><geometry><box><size>0.3 0.3 0.3</size></box></geometry></collision></link></model>
   <model name="MODEL2"><pose>0 1 0.5 0 0 0</pose><link name="link"><inertial><mass>1</mass></inertial>
     </link></model>
-</world></sdf>'''
+</world></sdf>"""
 
 
 def test_load_world_sets_physics_and_pacing_and_spawns_inline_models():
     sim = Simulation()
     warnings = sim.load_world(parse_sdf_world(WORLD))
-    assert warnings == ["cannot resolve model://table (model 'table1'): not spawned",
-                        "world plugin libworld_thing.so (p) is not supported: ignored"]
+    assert warnings == [
+        "cannot resolve model://table (model 'table1'): not spawned",
+        "world plugin libworld_thing.so (p) is not supported: ignored",
+    ]
     properties = sim.physics_properties()
     assert properties["time_step"] == 0.002 and properties["ode_config"]["sor_pgs_iters"] == 30
     assert properties["max_update_rate"] == pytest.approx(1000.0) and sim.real_time_factor == pytest.approx(2.0)
@@ -610,8 +671,7 @@ def test_reset_world_restores_poses_joints_odometry_and_clears_loads():
     robot.update_odometry(sim.sim_time)
     assert robot.odometry.x > 0.05 and sim.joint_properties("wheel_left_joint")["position"][0] > 1
     wheel = sim.joint_properties("wheel_left_joint")["position"][0]
-    sim.set_link_properties("robot::base_footprint", (0, 0, 0.05), (0, 0, 0, 1), True, 3.0,
-                            (0.05, 0, 0, 0.05, 0, 0.05))
+    sim.set_link_properties("robot::base_footprint", (0, 0, 0.05), (0, 0, 0, 1), True, 3.0, (0.05, 0, 0, 0.05, 0, 0.05))
     assert sim.joint_properties("wheel_left_joint")["position"][0] == pytest.approx(wheel, abs=1e-12)
     sim.reset_world()
     for name, (position, quaternion, _, _) in start.items():

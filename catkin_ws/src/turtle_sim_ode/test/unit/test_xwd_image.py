@@ -12,8 +12,33 @@ def make_dump(rgb, bits_per_pixel, byte_order=0):
     pixel_bytes = bits_per_pixel // 8
     stride = (width * pixel_bytes + 3) // 4 * 4
     name = b"test\0"
-    header = [100 + len(name), 7, 2, 24, width, height, 0, byte_order, 32, byte_order, 32, bits_per_pixel, stride,
-              4, 0xFF0000, 0x00FF00, 0x0000FF, 8, 256, 0, width, height, 0, 0, 0]
+    header = [
+        100 + len(name),
+        7,
+        2,
+        24,
+        width,
+        height,
+        0,
+        byte_order,
+        32,
+        byte_order,
+        32,
+        bits_per_pixel,
+        stride,
+        4,
+        0xFF0000,
+        0x00FF00,
+        0x0000FF,
+        8,
+        256,
+        0,
+        width,
+        height,
+        0,
+        0,
+        0,
+    ]
     body = bytearray()
     for row in rgb:
         line = bytearray()
