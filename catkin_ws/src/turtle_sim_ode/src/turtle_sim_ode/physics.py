@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Callable, Dict, List, Optional, Sequence, Set, Tuple
+from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequence, Set, Tuple
 
 import ode
 
@@ -111,6 +111,30 @@ class PhysicsParams:
         self.ground_surface.validate("ground_surface")
 
 
+class WatchedContact(NamedTuple):
+    """One contact point touching a watched geom: ``normal`` points from ``other`` towards
+    ``geom`` (moving ``geom`` along it by ``depth`` separates them)."""
+
+    geom: ode.GeomObject
+    other: ode.GeomObject
+    position: Tuple[float, float, float]
+    normal: Tuple[float, float, float]
+    depth: float
+
+
+class ContactWatch:
+    """Contacts touching ``geoms`` during the last step (see ``PhysicsWorld.watch_contacts``).
+
+    ``contacts`` is a new list after every step (the ODE contact points as found, before
+    contact joints are made from them); ground contacts are included (``other`` is
+    ``PhysicsWorld.ground``).
+    """
+
+    def __init__(self, geoms: Iterable[ode.GeomObject]) -> None:
+        self.geoms = frozenset(geoms)
+        self.contacts: List[WatchedContact] = []
+
+
 def _merge_line_contact(contacts: Sequence[ode.Contact]) -> Sequence[ode.Contact]:
     """Replace the two end points of a line contact by its centre of pressure.
 
@@ -171,6 +195,9 @@ class PhysicsWorld:
         self._pair_cache: Dict[Tuple[ode.GeomObject, ode.GeomObject], PairContact] = {}
         self._jointed: Set[Tuple[ode.Body, ode.Body]] = set()
         self._post_step_hooks: List[Callable[[], None]] = []
+        # Contact listeners: geom -> the watches that asked for it (empty: no cost per step).
+        self._watches: List[ContactWatch] = []
+        self._watched: Dict[ode.GeomObject, List[ContactWatch]] = {}
 
     # --- clock -----------------------------------------------------------------
     @property
@@ -279,15 +306,56 @@ class PhysicsWorld:
     def remove_post_step_hook(self, hook: Callable[[], None]) -> None:
         self._post_step_hooks.remove(hook)
 
+    # --- contact listeners ----------------------------------------------------------
+    def watch_contacts(self, geoms: Iterable[ode.GeomObject]) -> ContactWatch:
+        """Record, from the next step on, every contact touching one of ``geoms`` in
+        ``watch.contacts`` (replaced at each step). Steps cost nothing extra without watches."""
+        watch = ContactWatch(geoms)
+        self._watches.append(watch)
+        for geom in watch.geoms:
+            self._watched.setdefault(geom, []).append(watch)
+        return watch
+
+    def unwatch_contacts(self, watch: ContactWatch) -> None:
+        """Stop recording for ``watch`` (no error if it was already removed)."""
+        if watch not in self._watches:
+            return
+        self._watches.remove(watch)
+        for geom in watch.geoms:
+            watches = self._watched.get(geom, [])
+            if watch in watches:
+                watches.remove(watch)
+            if not watches:
+                self._watched.pop(geom, None)
+
+    def _record_contacts(self, contacts: Sequence[ode.Contact], geom1: ode.GeomObject, geom2: ode.GeomObject) -> None:
+        for watched, other, sign in ((geom1, geom2, 1.0), (geom2, geom1, -1.0)):
+            watches = self._watched.get(watched)
+            if not watches:
+                continue
+            for contact in contacts:
+                position, normal, depth, _, _ = contact.getContactGeomParams()
+                # ODE's normal points out of geom2 into geom1.
+                record = WatchedContact(
+                    watched, other, position, (sign * normal[0], sign * normal[1], sign * normal[2]), depth
+                )
+                for watch in watches:
+                    watch.contacts.append(record)
+
     # --- stepping ----------------------------------------------------------------
     def step(self) -> None:
         """Collide, then advance exactly one fixed time step."""
         self._contact_joints.clear()
+        if self._watches:
+            for watch in self._watches:
+                watch.contacts = []
         ground = self.ground
         collide = ode.collide
         for geom, body, pair in self._ground_tests:
             contacts = collide(ground, geom)
             if contacts:
+                if self._watched:
+                    self._record_contacts(contacts, ground, geom)
                 self._add_contacts(contacts, None, body, pair)
         if self.space.getNumGeoms() > 1:
             self.space.collide(None, self._near)
@@ -308,6 +376,8 @@ class PhysicsWorld:
             return
         contacts = ode.collide(geom1, geom2)
         if contacts:
+            if self._watched:
+                self._record_contacts(contacts, geom1, geom2)
             self._add_contacts(contacts, body1, body2, self._pair_contact(geom1, geom2))
 
     def _pair_contact(self, geom1: ode.GeomObject, geom2: ode.GeomObject) -> PairContact:
