@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Mapping, Optional, Tuple
 
 from .diff_drive import DiffDriveParams
+from .sensors import LaserConfig
 from .urdf_model import GazeboPlugin, ModelError
 
 KOBUKI = "libgazebo_ros_kobuki.so"
@@ -65,6 +66,7 @@ class ModelPlugins:
     drives: List[DriveConfig] = field(default_factory=list)
     ground_truths: List[GroundTruthConfig] = field(default_factory=list)
     joint_states: List[JointStatesConfig] = field(default_factory=list)
+    lasers: List[LaserConfig] = field(default_factory=list)  # <sensor type="ray"> blocks of a URDF
     warnings: List[str] = field(default_factory=list)
 
 

@@ -4,6 +4,7 @@ Each publisher keeps its own schedule in sim time; SimulatorNode calls publish_d
 """
 from __future__ import annotations
 
+import copy
 import math
 import random
 from typing import List, Optional, Sequence, Tuple
@@ -12,11 +13,12 @@ import rospy
 import tf2_ros
 from geometry_msgs.msg import Quaternion, TransformStamped, Twist
 from nav_msgs.msg import Odometry
-from sensor_msgs.msg import JointState
+from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_msgs.msg import Empty as EmptyMsg
 
 from .model_builder import BuiltModel, quat_from_rpy, quat_multiply
 from .plugins import GroundTruthConfig, JointStatesConfig, find_body
+from .sensors import ImuSensor, LaserScanner
 from .settings import SimulatorSettings
 from .simulation import DiffDriveRobot, Simulation
 
@@ -84,6 +86,11 @@ def topic_prefix(namespace: str) -> str:
     """A model's robot namespace prefixes its plugin topics, as gazebo_ros plugins do."""
     namespace = namespace.strip("/")
     return namespace + "/" if namespace else ""
+
+
+def plugin_topic(namespace: str, topic: str) -> str:
+    """A plugin's topic in the model's namespace; an absolute topic name stays as it is."""
+    return topic if topic.startswith("/") else topic_prefix(namespace) + topic
 
 
 class Periodic:
@@ -312,6 +319,73 @@ class JointStatePublisher(Periodic):
         self._pub.unregister()
 
 
+class LaserPublisher(Periodic):
+    """sensor_msgs/LaserScan of a ray sensor; rays are cast only when due and someone listens."""
+
+    def __init__(self, scanner: LaserScanner, namespace: str) -> None:
+        config = scanner.config
+        super().__init__(1.0 / config.update_rate)
+        self._scanner = scanner
+        self._pub = rospy.Publisher(
+            plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan, queue_size=1
+        )
+        self._template = LaserScan(
+            angle_min=config.min_angle,
+            angle_max=config.max_angle,
+            angle_increment=config.angle_increment,
+            time_increment=0.0,
+            scan_time=1.0 / config.update_rate,
+            range_min=config.range_min,
+            range_max=config.range_max,
+        )
+        self._template.header.frame_id = scanner.frame
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        if not self._pub.get_num_connections():
+            return
+        scan = copy.copy(self._template)
+        scan.header = copy.copy(self._template.header)
+        scan.header.stamp = stamp
+        scan.ranges = self._scanner.scan()
+        self._pub.publish(scan)
+
+    def close(self) -> None:
+        self._pub.unregister()
+
+
+class ImuPublisher(Periodic):
+    """sensor_msgs/Imu of a link: the Kobuki's gyro, on <model>/sensors/imu_data as kobuki_gazebo_plugins has it."""
+
+    def __init__(self, sensor: ImuSensor, topic: str, frame: str, rate: float) -> None:
+        super().__init__(1.0 / rate)
+        self._sensor = sensor
+        self._frame = frame
+        self._pub = rospy.Publisher(topic, Imu, queue_size=10)
+
+    def restart(self, now: float) -> None:
+        super().restart(now)
+        self._sensor.reset()  # a world or time reset is a jump the acceleration must not see
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        reading = self._sensor.read(now)  # every time, even unheard: acceleration differences need each reading
+        if not self._pub.get_num_connections():
+            return
+        imu = Imu()
+        imu.header.stamp = stamp
+        imu.header.frame_id = self._frame
+        imu.orientation = Quaternion(*reading.orientation)
+        imu.angular_velocity.x, imu.angular_velocity.y, imu.angular_velocity.z = reading.angular_velocity
+        accel = imu.linear_acceleration
+        accel.x, accel.y, accel.z = reading.linear_acceleration
+        imu.orientation_covariance = reading.orientation_covariance
+        imu.angular_velocity_covariance = reading.angular_velocity_covariance
+        imu.linear_acceleration_covariance = reading.linear_acceleration_covariance
+        self._pub.publish(imu)
+
+    def close(self) -> None:
+        self._pub.unregister()
+
+
 def model_interfaces(
     name: str,
     sim: Simulation,
@@ -338,6 +412,11 @@ def model_interfaces(
                     True,
                 )
             )
+            # The Kobuki plugin's gyro, on <model>/sensors/imu_data as kobuki_gazebo_plugins publishes it.
+            imu_link = "imu_link" if "imu_link" in model.links else base
+            imu = ImuSensor(model, imu_link, tuple(sim.physics.params.gravity))
+            imu_topic = topic_prefix(namespace) + name + "/sensors/imu_data"
+            interfaces.append(ImuPublisher(imu, imu_topic, imu_link, settings.publish_rate))
     plugins = sim.plugins.get(name)
     if plugins is not None:
         for config in plugins.ground_truths:
@@ -348,4 +427,6 @@ def model_interfaces(
             interfaces.append(GroundTruthPublisher.from_p3d(model, link, config, namespace, settings.publish_rate))
         for config in plugins.joint_states:
             interfaces.append(JointStatePublisher(model, config, namespace))
+        for config in plugins.lasers:
+            interfaces.append(LaserPublisher(LaserScanner(sim.physics, model, config.link, config), namespace))
     return interfaces

@@ -10,6 +10,7 @@ from .diff_drive import DiffDriveController, WheelOdometry
 from .model_builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
 from .physics import PhysicsParams, PhysicsWorld
 from .plugins import DriveConfig, ModelPlugins, read_plugins
+from .sensors import read_lasers
 from .sdf_model import World, _rpy, parse_sdf_model
 from .urdf_model import ModelError, RobotModel, parse_urdf
 from .world_control import SCOPE, WORLD_FRAMES, Load, QuatXYZW, WorldControl, WorldError, update_rate, vector
@@ -150,8 +151,12 @@ class Simulation(WorldControl):
     def spawn_urdf(
         self, name: str, urdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
     ) -> List[str]:
-        """Parse a URDF and ``spawn_model`` it (ModelError if it is bad)."""
-        return self.spawn_model(name, parse_urdf(urdf), pose, reference_frame)
+        """Parse a URDF and ``spawn_model`` it, with its laser sensors (ModelError if it is bad)."""
+        robot = parse_urdf(urdf)
+        lasers = [laser for laser in read_lasers(urdf) if laser.topic]
+        warnings = self.spawn_model(name, robot, pose, reference_frame)
+        self.plugins[name].lasers = lasers
+        return warnings
 
     def spawn_sdf(
         self, name: str, sdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""

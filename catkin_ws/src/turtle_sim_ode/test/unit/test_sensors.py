@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import random
 import statistics
 import time
@@ -49,7 +50,9 @@ LASER_BLOCK = """
     </sensor>
   </gazebo>
 """
-LASER_URDF = TURTLEBOT_URDF.replace("</robot>", LASER_BLOCK + "</robot>")
+# The shipped TurtleBot has a laser of its own; these tests put theirs in its place.
+BARE_URDF = re.sub(r'\s*<gazebo reference="base_scan">.*?</gazebo>', "", TURTLEBOT_URDF, flags=re.S)
+LASER_URDF = BARE_URDF.replace("</robot>", LASER_BLOCK + "</robot>")
 SCAN_HEIGHT = 0.0102 + 0.12  # base_scan above the ground when the robot rests
 
 
@@ -87,7 +90,13 @@ def test_read_lasers_takes_gazebo_sensor_tags() -> None:
     assert config.update_rate == 5.0 and config.noise_stddev == 0.01
     assert (config.topic, config.frame) == ("/scan", "base_scan")
     assert config.angle_increment == pytest.approx(6.28319 / 359)
-    assert read_lasers(TURTLEBOT_URDF) == []
+    assert read_lasers(BARE_URDF) == []
+
+
+def test_shipped_turtlebot_has_the_issue_laser() -> None:
+    (config,) = read_lasers(TURTLEBOT_URDF)
+    assert (config.link, config.frame, config.topic) == ("base_scan", "base_scan", "scan")
+    assert (config.samples, config.range_min, config.range_max, config.update_rate) == (360, 0.12, 3.5, 10.0)
 
 
 @pytest.mark.parametrize(

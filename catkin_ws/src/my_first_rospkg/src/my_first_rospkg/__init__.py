@@ -1,0 +1,1 @@
+"""TurtleBot exercises: ROS-free cores (motion, scan) and their rospy interfaces (nodes)."""
