@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 import threading
 import time
-from typing import Dict, List
+from typing import Dict, List, Optional
 
 import rospkg
 import rospy
@@ -19,7 +19,7 @@ from .gazebo_api import GazeboApi
 from .settings import SettingsError, SimulatorSettings, settings_from_params
 from .sdf_model import parse_sdf_world
 from .ros_plugins import Periodic, model_interfaces, sim_stamp
-from .simulation import Simulation
+from .simulation import Simulation, WorldError
 from .urdf_model import ModelError
 
 
@@ -38,6 +38,11 @@ class SimulatorNode:
         self._clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
         self._tf = tf2_ros.TransformBroadcaster()
         self.interfaces: Dict[str, List[Periodic]] = {}
+        self.api: Optional[GazeboApi] = None
+
+    def advertise(self) -> None:
+        """Offer the /gazebo services and topics: only once the world file and start-up model are in, so that
+        no client (spawn_model in a launch file) can put a model in first."""
         self.api = GazeboApi(
             self.sim,
             self.lock,
@@ -45,7 +50,7 @@ class SimulatorNode:
             self._remove_interface,
             self._set_paused,
             lambda: self.paused,
-            settings.model_states_rate,
+            self.settings.model_states_rate,
         )
 
     # --- models -------------------------------------------------------------------------------------------
@@ -105,7 +110,8 @@ class SimulatorNode:
                 for interfaces in self.interfaces.values():
                     for interface in interfaces:
                         interface.publish_due(now)
-                self.api.publish_states(now)
+                if self.api is not None:
+                    self.api.publish_states(now)
                 rtf = self.sim.real_time_factor
             if now >= next_clock - 1e-9:
                 next_clock = max(next_clock + clock_period, now)
@@ -162,7 +168,7 @@ def main() -> int:
     if settings.world_name:
         try:
             load_world(node, settings.world_name)
-        except (ModelError, OSError) as error:
+        except (ModelError, WorldError, OSError) as error:
             rospy.logfatal("cannot load world [%s]: %s" % (settings.world_name, error))
             return 1
     if settings.spawn_model_name:
@@ -178,6 +184,7 @@ def main() -> int:
         except ModelError as error:
             rospy.logfatal("cannot spawn model [%s]: %s" % (settings.spawn_model_name, error))
             return 1
+    node.advertise()
     try:
         node.run()
     except rospy.ROSInterruptException:
