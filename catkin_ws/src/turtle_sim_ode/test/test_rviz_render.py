@@ -26,7 +26,8 @@ def start_xvfb():
     """Xvfb on a display number it picks itself (-displayfd), so parallel tests never collide."""
     read_end, write_end = os.pipe()
     server = subprocess.Popen(
-        ["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1024x768x24", "-nolisten", "tcp"],
+        # -noreset: the server must not reset (and refuse connections) whenever its last client leaves.
+        ["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1024x768x24", "-nolisten", "tcp", "-noreset"],
         pass_fds=(write_end,),
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
@@ -60,35 +61,53 @@ def robot_pixels(image):
     return int(np.count_nonzero((b > r + 60) & (b > g + 20)))
 
 
+def tail(path, lines=15):
+    with open(path, errors="replace") as log:
+        return "".join(log.readlines()[-lines:])
+
+
 class RvizShowsRobot(unittest.TestCase):
     def test_robot_visible(self):
         xvfb, display = start_xvfb()
         env = dict(os.environ, DISPLAY=display)
-        rviz = subprocess.Popen(
-            ["rviz", "-d", rospy.get_param("~rviz_config")],
-            env=env,
-            stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL,
-            start_new_session=True,
-        )
+        rviz_log_path = os.path.join(tempfile.gettempdir(), "turtle_sim_ode_rviz.log")
+        with open(rviz_log_path, "w") as rviz_log:
+            rviz = subprocess.Popen(
+                ["rviz", "-d", rospy.get_param("~rviz_config")],
+                env=env,
+                stdout=rviz_log,
+                stderr=subprocess.STDOUT,
+                start_new_session=True,
+            )
         shot_path = os.path.join(tempfile.gettempdir(), "turtle_sim_ode_rviz.png")
         try:
             deadline = time.monotonic() + rospy.get_param("~timeout")
-            pixels, image = 0, None
+            pixels, image, grab_error = 0, None, ""
             while time.monotonic() < deadline and pixels < rospy.get_param("~min_robot_pixels"):
-                self.assertIsNone(rviz.poll(), "rviz exited with %s" % rviz.poll())
-                dump = subprocess.run(
-                    ["xwd", "-root", "-silent", "-display", display], stdout=subprocess.PIPE, check=True
-                ).stdout
-                image = read_xwd(dump)
-                pixels = robot_pixels(image)
+                self.assertIsNone(xvfb.poll(), "Xvfb on %s exited with %s" % (display, xvfb.poll()))
+                self.assertIsNone(
+                    rviz.poll(), "rviz exited with %s; its output:\n%s" % (rviz.poll(), tail(rviz_log_path))
+                )
+                grab = subprocess.run(
+                    ["xwd", "-root", "-silent", "-display", display], stdout=subprocess.PIPE, stderr=subprocess.PIPE
+                )
+                if grab.returncode == 0:
+                    image = read_xwd(grab.stdout)
+                    pixels = robot_pixels(image)
+                else:
+                    # A grab can fail while rviz (re)creates its GL window: the next try decides.
+                    grab_error = grab.stderr.decode(errors="replace").strip()
+                    rospy.logwarn("xwd on %s failed [%s]: %s", display, grab.returncode, grab_error)
                 time.sleep(1.0)  # rviz draws in its own time: nothing to wait on but the picture
-            if image is not None:
-                plt.imsave(shot_path, image)
+            self.assertIsNotNone(
+                image, "no screenshot of %s could be taken; last xwd error: %s" % (display, grab_error)
+            )
+            plt.imsave(shot_path, image)
             self.assertGreaterEqual(
                 pixels,
                 rospy.get_param("~min_robot_pixels"),
-                "the robot did not show in rviz; last screenshot: %s" % shot_path,
+                "the robot did not show in rviz; last screenshot: %s; rviz output:\n%s"
+                % (shot_path, tail(rviz_log_path)),
             )
         finally:
             stop(rviz)
