@@ -1,6 +1,8 @@
 """ODE world with a ground plane, Gazebo-style contact surfaces and a fixed step."""
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import math
 from dataclasses import dataclass, field
 from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequence, Set, Tuple
@@ -27,6 +29,30 @@ PairContact = Tuple[ContactSurface, bool]
 # crashes. Worlds are therefore kept for the life of the process (a few hundred bytes
 # each); bodies, joints and geoms are still freed with their wrappers.
 _WORLDS_KEPT_ALIVE: List[ode.World] = []
+
+
+def _libode() -> Optional[ctypes.CDLL]:
+    """The libode that PyODE is linked against (already loaded, so the same globals), if it can be found."""
+    for name in ("libode.so.8", ctypes.util.find_library("ode")):
+        if name:
+            try:
+                return ctypes.CDLL(name)
+            except OSError:
+                continue
+    return None
+
+
+_LIBODE = _libode()
+
+
+def seed_ode_random(seed: int = 0) -> bool:
+    """Reseed ODE's process-wide random generator, which the quick solver uses to reorder its constraints:
+    a world seeded afresh steps the same way every time (lockstep reproducibility). PyODE has no binding for
+    dRandSetSeed, hence ctypes. False if libode cannot be found (runs then differ in the last bits)."""
+    if _LIBODE is None:
+        return False
+    _LIBODE.dRandSetSeed(ctypes.c_ulong(seed))
+    return True
 
 
 def _finite(value: float) -> bool:
@@ -177,6 +203,7 @@ class PhysicsWorld:
         p = self.params
         self.world = ode.World()
         _WORLDS_KEPT_ALIVE.append(self.world)
+        seed_ode_random()
         self._configure_world()
         self.space = ode.HashSpace()
         self.ground = ode.GeomPlane(None, (0.0, 0.0, 1.0), 0.0)
@@ -215,8 +242,10 @@ class PhysicsWorld:
         return len(self._contact_joints)
 
     def reset_time(self) -> None:
+        """Time back to 0, and ODE's solver randomness with it, as in a fresh world."""
         self._time_base = 0.0
         self._steps = 0
+        seed_ode_random()
 
     # --- settings ------------------------------------------------------------------
     def _configure_world(self) -> None:

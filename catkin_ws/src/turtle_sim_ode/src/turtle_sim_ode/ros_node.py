@@ -14,6 +14,7 @@ import rospkg
 import rospy
 import tf2_ros
 from rosgraph_msgs.msg import Clock
+from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepSimulationResponse
 
 from .gazebo_api import GazeboApi
 from .settings import SettingsError, SimulatorSettings, settings_from_params
@@ -21,6 +22,9 @@ from .sdf_model import parse_sdf_world
 from .ros_plugins import Periodic, model_interfaces, sim_stamp
 from .simulation import Simulation, WorldError
 from .urdf_model import ModelError
+
+# One /gazebo/step_simulation call holds the world for at most this many steps (about a minute of wall time).
+MAX_LOCKSTEP_STEPS = 1000000
 
 
 class SimulatorNode:
@@ -39,6 +43,10 @@ class SimulatorNode:
         self._tf = tf2_ros.TransformBroadcaster()
         self.interfaces: Dict[str, List[Periodic]] = {}
         self.api: Optional[GazeboApi] = None
+        self._step_service: Optional[rospy.Service] = None
+        # Sim time of the last step and of the next /clock message (a reset of the simulation goes below both).
+        self._now = self.sim.sim_time
+        self._next_clock = self._now
 
     def advertise(self) -> None:
         """Offer the /gazebo services and topics: only once the world file and start-up model are in, so that
@@ -52,6 +60,7 @@ class SimulatorNode:
             lambda: self.paused,
             self.settings.model_states_rate,
         )
+        self._step_service = rospy.Service("~step_simulation", StepSimulation, self._on_step_simulation)
 
     # --- models -------------------------------------------------------------------------------------------
     def add_interface(self, name: str, robot_namespace: str) -> None:
@@ -84,38 +93,57 @@ class SimulatorNode:
     def paused(self) -> bool:
         return not self._unpaused.is_set()
 
+    # --- stepping -----------------------------------------------------------------------------------------
+    def _advance(self) -> None:
+        """One physics step, then /clock and every topic that fell due (call under the lock)."""
+        if self.sim.sim_time < self._now:  # /gazebo/reset_simulation: time starts again
+            self._next_clock = self.sim.sim_time
+            for interface in self._all_interfaces():
+                interface.restart(self.sim.sim_time)
+        self.sim.step()
+        now = self._now = self.sim.sim_time
+        for interfaces in self.interfaces.values():
+            for interface in interfaces:
+                interface.publish_due(now)
+        if self.api is not None:
+            self.api.publish_states(now)
+        if now >= self._next_clock - 1e-9:
+            self._next_clock = max(self._next_clock + 1.0 / self.settings.pub_clock_frequency, now)
+            self._clock_pub.publish(Clock(sim_stamp(now)))
+
+    def _on_step_simulation(self, request: StepSimulationRequest) -> StepSimulationResponse:
+        """Lockstep: exactly `steps` steps of a paused simulation, each publishing what it makes due."""
+        if not self.paused:
+            message = "the simulation is running: pause it (/gazebo/pause_physics) before stepping it"
+        elif request.steps > MAX_LOCKSTEP_STEPS:
+            message = "steps [%d] is more than one call may take (%d): split it" % (request.steps, MAX_LOCKSTEP_STEPS)
+        else:
+            for _ in range(request.steps):
+                with self.lock:  # taken per step so that services and topics are served in between
+                    self._advance()
+            return StepSimulationResponse(sim_stamp(self._now), True, "stepped %d" % request.steps)
+        rospy.logwarn("step_simulation: %s", message)
+        return StepSimulationResponse(sim_stamp(self.sim.sim_time), False, message)
+
     # --- main loop ----------------------------------------------------------------------------------------
     def run(self) -> None:
-        """Step until shutdown, publishing /clock and the robots' topics when due in sim time, paced to the
-        simulation's real-time factor (which /gazebo/set_physics_properties may change)."""
-        clock_period = 1.0 / self.settings.pub_clock_frequency
-        now = self.sim.sim_time
-        self._clock_pub.publish(Clock(sim_stamp(now)))
-        next_clock = now + clock_period
-        anchor_wall, anchor_sim = time.monotonic(), now
+        """Step until shutdown, paced to the simulation's real-time factor (which /gazebo/set_physics_properties
+        may change); while paused, only /gazebo/step_simulation steps."""
+        with self.lock:
+            self._clock_pub.publish(Clock(sim_stamp(self._now)))
+            self._next_clock = self._now + 1.0 / self.settings.pub_clock_frequency
+        anchor_wall, anchor_sim = time.monotonic(), self._now
         while not rospy.is_shutdown():
             if not self._unpaused.is_set():
                 self._unpaused.wait(0.1)
                 anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
                 continue
             with self.lock:
-                if self.sim.sim_time < now:  # /gazebo/reset_simulation: time starts again
-                    now = self.sim.sim_time
-                    next_clock = now
-                    anchor_wall, anchor_sim = time.monotonic(), now
-                    for interface in self._all_interfaces():
-                        interface.restart(now)
-                self.sim.step()
-                now = self.sim.sim_time
-                for interfaces in self.interfaces.values():
-                    for interface in interfaces:
-                        interface.publish_due(now)
-                if self.api is not None:
-                    self.api.publish_states(now)
+                if self.sim.sim_time < self._now:
+                    anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
+                self._advance()
+                now = self._now
                 rtf = self.sim.real_time_factor
-            if now >= next_clock - 1e-9:
-                next_clock = max(next_clock + clock_period, now)
-                self._clock_pub.publish(Clock(sim_stamp(now)))
             if rtf > 0:
                 delay = anchor_wall + (now - anchor_sim) / rtf - time.monotonic()
                 if delay > 0:
@@ -128,6 +156,8 @@ class SimulatorNode:
         return [interface for interfaces in self.interfaces.values() for interface in interfaces]
 
     def close(self) -> None:
+        if self._step_service is not None:
+            self._step_service.shutdown()
         for interface in self._all_interfaces():
             interface.close()
 
