@@ -7,15 +7,16 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Mapping, Optional, Tuple
 
 from .diff_drive import DiffDriveParams
-from .sensors import LaserConfig
+from .sensors import KOBUKI_CLIFF_THRESHOLD, ContactConfig, ImuConfig, LaserConfig, imu_config
 from .urdf_model import GazeboPlugin, ModelError
 
 KOBUKI = "libgazebo_ros_kobuki.so"
 DIFF_DRIVE = "libgazebo_ros_diff_drive.so"
 P3D = "libgazebo_ros_p3d.so"
 JOINT_STATE_PUBLISHER = "libgazebo_ros_joint_state_publisher.so"
+IMU = "libgazebo_ros_imu.so"
 DRIVES = (KOBUKI, DIFF_DRIVE)
-SUPPORTED = (KOBUKI, DIFF_DRIVE, P3D, JOINT_STATE_PUBLISHER)
+SUPPORTED = (KOBUKI, DIFF_DRIVE, P3D, JOINT_STATE_PUBLISHER, IMU)
 
 
 @dataclass
@@ -36,6 +37,7 @@ class DriveConfig:
     publish_joint_states: bool
     update_rate: float  # Hz of sim time; 0 = the node's publish_rate
     robot_namespace: str = ""
+    cliff_threshold: float = KOBUKI_CLIFF_THRESHOLD  # the Kobuki's cliff sensors (m to the floor)
 
 
 @dataclass
@@ -67,6 +69,8 @@ class ModelPlugins:
     ground_truths: List[GroundTruthConfig] = field(default_factory=list)
     joint_states: List[JointStatesConfig] = field(default_factory=list)
     lasers: List[LaserConfig] = field(default_factory=list)  # <sensor type="ray"> blocks of a URDF
+    imus: List[ImuConfig] = field(default_factory=list)  # IMU plugins, of the model or in <sensor type="imu">
+    contacts: List[ContactConfig] = field(default_factory=list)  # <sensor type="contact"> + bumper plugin
     warnings: List[str] = field(default_factory=list)
 
 
@@ -126,6 +130,7 @@ def kobuki_drive(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, 
         publish_joint_states=True,
         update_rate=0.0,
         robot_namespace=_text(plugin, "robotNamespace", ""),
+        cliff_threshold=_number(plugin, "cliff_detection_threshold", KOBUKI_CLIFF_THRESHOLD, minimum=1e-6),
     )
 
 
@@ -216,6 +221,8 @@ def read_plugins(
             found.ground_truths.append(ground_truth(plugin))
         elif plugin.filename == JOINT_STATE_PUBLISHER:
             found.joint_states.append(joint_states(plugin))
+        elif plugin.filename == IMU:
+            found.imus.append(imu_config(plugin.filename, plugin.params))
         else:
             found.warnings.append(f"plugin {plugin.filename} ({plugin.name}) is not supported: ignored")
     wanted = [j for d in found.drives for j in (d.left_joint, d.right_joint)]

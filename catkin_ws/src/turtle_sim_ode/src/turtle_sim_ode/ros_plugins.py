@@ -7,18 +7,22 @@ from __future__ import annotations
 import copy
 import math
 import random
-from typing import List, Optional, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
+import ode
 import rospy
 import tf2_ros
-from geometry_msgs.msg import Quaternion, TransformStamped, Twist
+from gazebo_msgs.msg import ContactState, ContactsState
+from geometry_msgs.msg import Point, Quaternion, TransformStamped, Twist, Vector3, Wrench
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_msgs.msg import Empty as EmptyMsg
+from turtle_sim_ode_msgs.msg import BumperEvent, CliffEvent
 
 from .model_builder import BuiltModel, quat_from_rpy, quat_multiply
 from .plugins import GroundTruthConfig, JointStatesConfig, find_body
-from .sensors import ImuSensor, LaserScanner
+from .physics import PhysicsWorld
+from .sensors import BumperSensor, CliffSensor, ContactConfig, ImuConfig, ImuSensor, LaserScanner
 from .settings import SimulatorSettings
 from .simulation import DiffDriveRobot, Simulation
 
@@ -354,10 +358,10 @@ class LaserPublisher(Periodic):
 
 
 class ImuPublisher(Periodic):
-    """sensor_msgs/Imu of a link: the Kobuki's gyro, on <model>/sensors/imu_data as kobuki_gazebo_plugins has it."""
+    """sensor_msgs/Imu of a link: the Kobuki's gyro, or an IMU plugin's (libgazebo_ros_imu*.so)."""
 
     def __init__(self, sensor: ImuSensor, topic: str, frame: str, rate: float) -> None:
-        super().__init__(1.0 / rate)
+        super().__init__(1.0 / rate if rate > 0 else 0.0)  # rate 0: every step, as gazebo_plugins has it
         self._sensor = sensor
         self._frame = frame
         self._pub = rospy.Publisher(topic, Imu, queue_size=10)
@@ -384,6 +388,122 @@ class ImuPublisher(Periodic):
 
     def close(self) -> None:
         self._pub.unregister()
+
+
+class BumperEventPublisher(Periodic):
+    """The Kobuki plugin's bumper events: one turtle_sim_ode_msgs/BumperEvent (= kobuki_msgs) per change."""
+
+    def __init__(self, sensor: BumperSensor, topic: str, rate: float) -> None:
+        super().__init__(1.0 / rate)
+        self._sensor = sensor
+        self._pub = rospy.Publisher(topic, BumperEvent, queue_size=10)
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        for bumper, state in self._sensor.changes():  # every time, even unheard: events are changes
+            self._pub.publish(BumperEvent(bumper=bumper, state=state))
+
+    def close(self) -> None:
+        self._sensor.close()
+        self._pub.unregister()
+
+
+class CliffEventPublisher(Periodic):
+    """The Kobuki plugin's cliff events: one turtle_sim_ode_msgs/CliffEvent per change, with the distance to
+    the floor in cm (``bottom``; the ray's range when it sees nothing)."""
+
+    def __init__(self, sensor: CliffSensor, topic: str, rate: float) -> None:
+        super().__init__(1.0 / rate)
+        self._sensor = sensor
+        self._pub = rospy.Publisher(topic, CliffEvent, queue_size=10)
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        for sensor, state, distance in self._sensor.changes():
+            bottom = int(round(min(distance, self._sensor.max_range) * 100.0))
+            self._pub.publish(CliffEvent(sensor=sensor, state=state, bottom=bottom))
+
+    def close(self) -> None:
+        self._pub.unregister()
+
+
+class ContactsPublisher(Periodic):
+    """libgazebo_ros_bumper.so: gazebo_msgs/ContactsState of a link's collisions during the last step, one
+    ContactState per touching pair with Gazebo's scoped collision names. Contact forces are not measured:
+    wrenches are zero."""
+
+    GROUND = "ground_plane::link::collision"
+
+    def __init__(self, sim: Simulation, model: BuiltModel, config: ContactConfig, namespace: str) -> None:
+        super().__init__(1.0 / config.update_rate if config.update_rate > 0 else 0.0)
+        self._sim = sim
+        self._physics: PhysicsWorld = sim.physics
+        self._watch = self._physics.watch_contacts(model.geoms.get(config.link, []))
+        self._frame = config.frame
+        self._names: Dict[ode.GeomObject, str] = {}
+        self._pub = rospy.Publisher(
+            plugin_topic(namespace or config.robot_namespace, config.topic), ContactsState, queue_size=1
+        )
+
+    def _name(self, geom: ode.GeomObject) -> str:
+        if geom is self._physics.ground:
+            return self.GROUND
+        if geom not in self._names:  # a model spawned since: name every geom again
+            self._names = {
+                g: "%s::%s::%s_collision%s" % (model.name, link, link, "_%d" % i if i else "")
+                for model in self._sim.models.values()
+                for link, geoms in model.geoms.items()
+                for i, g in enumerate(geoms)
+            }
+        return self._names.get(geom, "unknown")
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        if not self._pub.get_num_connections():
+            return
+        pairs: Dict[Tuple[ode.GeomObject, ode.GeomObject], ContactState] = {}
+        for contact in self._watch.contacts:
+            state = pairs.get((contact.geom, contact.other))
+            if state is None:
+                state = pairs[(contact.geom, contact.other)] = ContactState(
+                    collision1_name=self._name(contact.geom), collision2_name=self._name(contact.other)
+                )
+                state.info = "%s touches %s" % (state.collision1_name, state.collision2_name)
+            state.contact_positions.append(Point(*contact.position))
+            state.contact_normals.append(Vector3(*contact.normal))
+            state.depths.append(contact.depth)
+            state.wrenches.append(Wrench())
+        message = ContactsState(states=list(pairs.values()))
+        message.header.stamp = stamp
+        message.header.frame_id = self._frame
+        self._pub.publish(message)
+
+    def close(self) -> None:
+        self._physics.unwatch_contacts(self._watch)
+        self._pub.unregister()
+
+
+def _imu_publisher(model: BuiltModel, config: ImuConfig, gravity: Vec3, namespace: str) -> Optional[Periodic]:
+    if config.link not in model.links:
+        rospy.logwarn("model %s: IMU link [%s] does not exist: not published", model.name, config.link)
+        return None
+    topic = plugin_topic(namespace or config.robot_namespace, config.topic)
+    sensor = ImuSensor(model, config.link, gravity, config.noise)
+    return ImuPublisher(sensor, topic, config.frame or config.link, config.update_rate)
+
+
+def _kobuki_events(
+    sim: Simulation, model: BuiltModel, robot: DiffDriveRobot, prefix: str, settings: SimulatorSettings
+) -> List[Periodic]:
+    """The Kobuki plugin's bumper and cliff events; its bumper and cliff sensors sit on base_link (kobuki_description),
+    else on the root link."""
+    link = "base_link" if model.geoms.get("base_link") else model.root_link
+    if not model.geoms.get(link):
+        rospy.logwarn("model %s: no collision geoms on [%s]: no bumper or cliff events", model.name, link)
+        return []
+    return [
+        BumperEventPublisher(BumperSensor(sim.physics, model, link), prefix + "bumper", settings.publish_rate),
+        CliffEventPublisher(
+            CliffSensor(sim.physics, model, link, robot.config.cliff_threshold), prefix + "cliff", settings.publish_rate
+        ),
+    ]
 
 
 def model_interfaces(
@@ -415,8 +535,10 @@ def model_interfaces(
             # The Kobuki plugin's gyro, on <model>/sensors/imu_data as kobuki_gazebo_plugins publishes it.
             imu_link = "imu_link" if "imu_link" in model.links else base
             imu = ImuSensor(model, imu_link, tuple(sim.physics.params.gravity))
-            imu_topic = topic_prefix(namespace) + name + "/sensors/imu_data"
-            interfaces.append(ImuPublisher(imu, imu_topic, imu_link, settings.publish_rate))
+            interfaces.append(
+                ImuPublisher(imu, topic_prefix(namespace) + name + "/sensors/imu_data", imu_link, settings.publish_rate)
+            )
+            interfaces += _kobuki_events(sim, model, robot, topic_prefix(namespace) + name + "/events/", settings)
     plugins = sim.plugins.get(name)
     if plugins is not None:
         for config in plugins.ground_truths:
@@ -429,4 +551,10 @@ def model_interfaces(
             interfaces.append(JointStatePublisher(model, config, namespace))
         for config in plugins.lasers:
             interfaces.append(LaserPublisher(LaserScanner(sim.physics, model, config.link, config), namespace))
+        for config in plugins.imus:
+            publisher = _imu_publisher(model, config, tuple(sim.physics.params.gravity), namespace)
+            if publisher is not None:
+                interfaces.append(publisher)
+        for config in plugins.contacts:
+            interfaces.append(ContactsPublisher(sim, model, config, namespace))
     return interfaces

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass, field
-from typing import Iterator, List, Optional, Sequence, Set, Tuple
+from typing import Iterator, List, Mapping, Optional, Sequence, Set, Tuple
 from xml.etree.ElementTree import Element, ParseError
 
 import defusedxml
@@ -30,6 +30,10 @@ from .physics import ContactWatch, PhysicsWorld
 from .urdf_model import ModelError
 
 LASER_PLUGINS = ("libgazebo_ros_laser.so", "libgazebo_ros_ray_sensor.so")
+# gazebo_plugins' IMUs: the model plugin (also found inside <sensor type="imu">, as turtlebot3 has it) and the
+# sensor plugin.
+IMU_PLUGINS = ("libgazebo_ros_imu.so", "libgazebo_ros_imu_sensor.so")
+BUMPER_PLUGIN = "libgazebo_ros_bumper.so"
 
 # kobuki_msgs/BumperEvent and CliffEvent sensor indices and states.
 LEFT, CENTER, RIGHT = 0, 1, 2
@@ -103,6 +107,15 @@ class LaserConfig:
             raise ModelError(f"{what}: pose must be 6 finite numbers, got {self.pose!r}")
 
 
+@dataclass(frozen=True)
+class ImuNoise:
+    """Gaussian noise stddevs (rad, rad/s, m/s^2); 0 = exact."""
+
+    orientation: float = 0.0
+    angular_velocity: float = 0.0
+    linear_acceleration: float = 0.0
+
+
 def _child_text(element: Optional[Element], path: str) -> Optional[str]:
     found = None if element is None else element.find(path)
     if found is None or found.text is None or not found.text.strip():
@@ -166,8 +179,100 @@ def _laser_config(link: str, sensor: Element) -> LaserConfig:
     return config
 
 
-def read_lasers(urdf: str) -> List[LaserConfig]:
-    """The ``<gazebo reference="link"><sensor type="ray">`` blocks of a URDF (``gpu_ray`` too).
+@dataclass(frozen=True)
+class ImuConfig:
+    """An IMU plugin's settings (gazebo_plugins' names): on ``link``, published on ``topic`` in ``frame``
+    ("" = the link) at ``update_rate`` Hz of sim time (0 = every step), with gaussian noise of ``noise``."""
+
+    link: str
+    topic: str = "imu"
+    frame: str = ""
+    update_rate: float = 0.0
+    noise: ImuNoise = field(default_factory=ImuNoise)
+    robot_namespace: str = ""
+
+
+@dataclass(frozen=True)
+class ContactConfig:
+    """A ``<sensor type="contact">`` with libgazebo_ros_bumper.so: contacts of ``link``'s collisions, published
+    as gazebo_msgs/ContactsState on ``topic`` (frame ``frame``) at ``update_rate`` Hz (0 = every step)."""
+
+    link: str
+    name: str
+    collisions: Tuple[str, ...]
+    topic: str = "bumper_states"
+    frame: str = "world"
+    update_rate: float = 0.0
+    robot_namespace: str = ""
+
+
+@dataclass
+class SensorBlocks:
+    """The sensors a URDF's ``<gazebo reference="link"><sensor>`` blocks define (with a ROS plugin)."""
+
+    lasers: List[LaserConfig] = field(default_factory=list)
+    imus: List[ImuConfig] = field(default_factory=list)
+    contacts: List[ContactConfig] = field(default_factory=list)
+
+
+def _rate(element: Optional[Element], tags: Sequence[str], default: float, what: str) -> float:
+    for tag in tags:
+        if _child_text(element, tag) is not None:
+            value = _float(element, tag, default, what)
+            if value < 0:
+                raise ModelError(f"{what} <{tag}> must be >= 0, got {value}")
+            return value
+    return default
+
+
+def _param_number(params: Mapping[str, str], tag: str, default: float, what: str) -> float:
+    text = params.get(tag)
+    if text is None or not text.strip():
+        return default
+    try:
+        value = float(text)
+    except ValueError:
+        raise ModelError(f"{what} <{tag}> must be a number, got '{text}'") from None
+    if not math.isfinite(value) or value < 0:
+        raise ModelError(f"{what} <{tag}> must be a finite number >= 0, got '{text}'")
+    return value
+
+
+def imu_config(filename: str, params: Mapping[str, str], link: str = "", sensor_rate: float = 0.0) -> ImuConfig:
+    """gazebo_plugins' IMU plugin tags (``params``: tag -> text), as a model plugin or inside a <sensor> on
+    ``link``; <bodyName> wins over ``link``, and a model plugin must have it."""
+    what = f"<plugin filename='{filename}'>"
+    body = (params.get("bodyName") or link).strip().split("::")[-1]
+    if not body:
+        raise ModelError(f"{what} needs <bodyName> (the link the IMU is on)")
+    noise = _param_number(params, "gaussianNoise", 0.0, what)
+    rate_tag = "updateRateHZ" if "updateRateHZ" in params else "updateRate"
+    return ImuConfig(
+        link=body,
+        topic=(params.get("topicName") or "imu").strip(),
+        frame=(params.get("frameName") or "").strip(),
+        update_rate=_param_number(params, rate_tag, sensor_rate, what),
+        noise=ImuNoise(noise, noise, noise),
+        robot_namespace=(params.get("robotNamespace") or "").strip(),
+    )
+
+
+def _contact_config(link: str, sensor: Element, plugin: Element) -> ContactConfig:
+    name = sensor.get("name", "bumper")
+    what = f"<sensor name='{name}'>"
+    return ContactConfig(
+        link=link,
+        name=name,
+        collisions=tuple(c.text.strip() for c in sensor.findall("contact/collision") if c.text and c.text.strip()),
+        topic=_child_text(plugin, "bumperTopicName") or "bumper_states",
+        frame=_child_text(plugin, "frameName") or "world",
+        update_rate=_rate(sensor, ("update_rate",), 0.0, what),
+        robot_namespace=_child_text(plugin, "robotNamespace") or "",
+    )
+
+
+def read_sensors(urdf: str) -> SensorBlocks:
+    """The ``<gazebo reference="link"><sensor>`` blocks of a URDF: ray (``gpu_ray`` too), imu and contact.
 
     urdf_model keeps only contact tags of referenced ``<gazebo>`` blocks, so the raw text is
     read again here. ModelError for malformed XML or bad values, or a sensor on no link.
@@ -179,16 +284,31 @@ def read_lasers(urdf: str) -> List[LaserConfig]:
     except defusedxml.DefusedXmlException as error:
         raise ModelError(f"URDF rejected by the XML guard: {error}") from None
     links = {link.get("name") for link in robot.findall("link")}
-    configs = []
+    found = SensorBlocks()
     for gazebo in robot.findall("gazebo"):
         reference = gazebo.get("reference")
         for sensor in gazebo.findall("sensor"):
-            if sensor.get("type") not in ("ray", "gpu_ray"):
+            kind = sensor.get("type")
+            if kind not in ("ray", "gpu_ray", "imu", "contact"):
                 continue
             if reference is None or reference not in links:
                 raise ModelError(f"<sensor name='{sensor.get('name', '')}'> must be in a <gazebo reference=link>")
-            configs.append(_laser_config(reference, sensor))
-    return configs
+            plugins = sensor.findall("plugin")
+            if kind in ("ray", "gpu_ray"):
+                found.lasers.append(_laser_config(reference, sensor))
+            elif kind == "imu":
+                what = f"<sensor name='{sensor.get('name', '')}'>"
+                rate = _rate(sensor, ("update_rate",), 0.0, what)
+                found.imus += [
+                    imu_config(p.get("filename"), {c.tag: c.text or "" for c in p}, reference, rate)
+                    for p in plugins
+                    if p.get("filename") in IMU_PLUGINS
+                ]
+            else:
+                found.contacts += [
+                    _contact_config(reference, sensor, p) for p in plugins if p.get("filename") == BUMPER_PLUGIN
+                ]
+    return found
 
 
 # --- ray casting ----------------------------------------------------------------------
@@ -367,15 +487,6 @@ class LaserScanner:
 
 
 # --- IMU ---------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class ImuNoise:
-    """Gaussian noise stddevs (rad, rad/s, m/s^2); 0 = exact."""
-
-    orientation: float = 0.0
-    angular_velocity: float = 0.0
-    linear_acceleration: float = 0.0
-
-
 @dataclass(frozen=True)
 class ImuReading:
     """sensor_msgs/Imu contents: quaternion (x, y, z, w), body-frame rates and proper acceleration."""
@@ -593,13 +704,14 @@ class CliffSensor:
         """For each sensor: True when it sees a cliff."""
         return [d > self.threshold for d in self.distances()]
 
-    def changes(self) -> List[Tuple[int, int]]:
-        """(sensor, CLIFF or FLOOR) for each sensor whose state changed since the last call."""
+    def changes(self) -> List[Tuple[int, int, float]]:
+        """(sensor, CLIFF or FLOOR, distance) for each sensor whose state changed since the last call."""
         events = []
-        for sensor, now in enumerate(self.cliffs()):
+        for sensor, distance in enumerate(self.distances()):
+            now = distance > self.threshold
             if now != self._reported[sensor]:
                 self._reported[sensor] = now
-                events.append((sensor, CLIFF if now else FLOOR))
+                events.append((sensor, CLIFF if now else FLOOR, distance))
         return events
 
 
@@ -611,7 +723,13 @@ __all__ = [
     "ImuSensor",
     "LaserConfig",
     "LaserScanner",
-    "read_lasers",
+    "read_sensors",
+    "imu_config",
+    "ImuConfig",
+    "ContactConfig",
+    "SensorBlocks",
+    "IMU_PLUGINS",
+    "BUMPER_PLUGIN",
     "bumper_of",
     "LEFT",
     "CENTER",

@@ -10,7 +10,7 @@ from .diff_drive import DiffDriveController, WheelOdometry
 from .model_builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
 from .physics import PhysicsParams, PhysicsWorld
 from .plugins import DriveConfig, ModelPlugins, read_plugins
-from .sensors import read_lasers
+from .sensors import read_sensors
 from .sdf_model import World, _rpy, parse_sdf_model
 from .urdf_model import ModelError, RobotModel, parse_urdf
 from .world_control import SCOPE, WORLD_FRAMES, Load, QuatXYZW, WorldControl, WorldError, update_rate, vector
@@ -151,11 +151,14 @@ class Simulation(WorldControl):
     def spawn_urdf(
         self, name: str, urdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
     ) -> List[str]:
-        """Parse a URDF and ``spawn_model`` it, with its laser sensors (ModelError if it is bad)."""
+        """Parse a URDF and ``spawn_model`` it, with its sensors (ModelError if it is bad)."""
         robot = parse_urdf(urdf)
-        lasers = [laser for laser in read_lasers(urdf) if laser.topic]
+        sensors = read_sensors(urdf)
         warnings = self.spawn_model(name, robot, pose, reference_frame)
-        self.plugins[name].lasers = lasers
+        plugins = self.plugins[name]
+        plugins.lasers = [laser for laser in sensors.lasers if laser.topic]
+        plugins.imus += sensors.imus
+        plugins.contacts = sensors.contacts
         return warnings
 
     def spawn_sdf(

@@ -4,7 +4,8 @@ from pathlib import Path
 
 import pytest
 
-from turtle_sim_ode.plugins import DIFF_DRIVE, KOBUKI, P3D, find_body, read_plugins
+from turtle_sim_ode.plugins import DIFF_DRIVE, IMU, KOBUKI, P3D, find_body, read_plugins
+from turtle_sim_ode.sensors import ImuNoise
 from turtle_sim_ode.urdf_model import GazeboPlugin, ModelError, parse_urdf
 
 from conftest import TURTLEBOT_URDF
@@ -86,3 +87,25 @@ def test_find_body_accepts_scoped_names():
     assert find_body(["base_link"], "robot::base_link") == "base_link"
     assert find_body(["base_link"], "base_link") == "base_link"
     assert find_body(["base_link"], "wheel") is None
+
+
+def test_imu_model_plugin_as_turtlebot3_writes_it():
+    params = {"bodyName": "imu_link", "frameName": "imu_link", "topicName": "imu", "updateRate": "200"}
+    params["gaussianNoise"] = "0.01"
+    (imu,) = read_plugins("m", [GazeboPlugin(IMU, "imu_plugin", params)], {}, []).imus
+    assert (imu.link, imu.frame, imu.topic, imu.update_rate) == ("imu_link", "imu_link", "imu", 200.0)
+    assert imu.noise == ImuNoise(0.01, 0.01, 0.01)
+    with pytest.raises(ModelError, match="needs <bodyName>"):
+        read_plugins("m", [GazeboPlugin(IMU, "imu_plugin", {"topicName": "imu"})], {}, [])
+    with pytest.raises(ModelError, match="<updateRateHZ> must be a finite number >= 0"):
+        read_plugins("m", [GazeboPlugin(IMU, "imu_plugin", {"bodyName": "b", "updateRateHZ": "-5"})], {}, [])
+
+
+def test_kobuki_cliff_threshold_tag():
+    robot = parse_urdf(TURTLEBOT_URDF)
+    joints = ["wheel_left_joint", "wheel_right_joint"]
+    assert read_plugins("mobile_base", robot.plugins, {}, joints).drives[0].cliff_threshold == 0.04
+    (kobuki,) = robot.plugins
+    bad = GazeboPlugin(kobuki.filename, kobuki.name, dict(kobuki.params, cliff_detection_threshold="-1"))
+    with pytest.raises(ModelError, match="cliff_detection_threshold"):
+        read_plugins("mobile_base", [bad], {}, joints)

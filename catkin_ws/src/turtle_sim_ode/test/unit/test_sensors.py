@@ -26,7 +26,7 @@ from turtle_sim_ode.sensors import (
     LaserConfig,
     LaserScanner,
     bumper_of,
-    read_lasers,
+    read_sensors,
 )
 from turtle_sim_ode.simulation import Simulation
 from turtle_sim_ode.urdf_model import ModelError
@@ -66,7 +66,7 @@ def static_box(sim: Simulation, name: str, size: Tuple[float, float, float], xyz
 def laser_config(**changes: object) -> LaserConfig:
     fields = {"noise_stddev": 0.0}
     fields.update(changes)
-    return dataclasses.replace(read_lasers(LASER_URDF)[0], **fields)
+    return dataclasses.replace(read_sensors(LASER_URDF).lasers[0], **fields)
 
 
 def beam(config: LaserConfig, angle: float) -> int:
@@ -82,19 +82,19 @@ def resting() -> TurtleSim:
 
 
 # --- laser configuration ---------------------------------------------------------------------
-def test_read_lasers_takes_gazebo_sensor_tags() -> None:
-    (config,) = read_lasers(LASER_URDF)
+def test_read_sensors_lasers_takes_gazebo_sensor_tags() -> None:
+    (config,) = read_sensors(LASER_URDF).lasers
     assert config.link == "base_scan" and config.name == "lds_lfcd_sensor"
     assert config.samples == 360 and config.min_angle == 0.0 and config.max_angle == pytest.approx(6.28319)
     assert (config.range_min, config.range_max, config.range_resolution) == (0.12, 3.5, 0.015)
     assert config.update_rate == 5.0 and config.noise_stddev == 0.01
     assert (config.topic, config.frame) == ("/scan", "base_scan")
     assert config.angle_increment == pytest.approx(6.28319 / 359)
-    assert read_lasers(BARE_URDF) == []
+    assert read_sensors(BARE_URDF).lasers == []
 
 
 def test_shipped_turtlebot_has_the_issue_laser() -> None:
-    (config,) = read_lasers(TURTLEBOT_URDF)
+    (config,) = read_sensors(TURTLEBOT_URDF).lasers
     assert (config.link, config.frame, config.topic) == ("base_scan", "base_scan", "scan")
     assert (config.samples, config.range_min, config.range_max, config.update_rate) == (360, 0.12, 3.5, 10.0)
 
@@ -108,16 +108,16 @@ def test_shipped_turtlebot_has_the_issue_laser() -> None:
         ("<stddev>0.01</stddev>", "<stddev>-1</stddev>", "noise_stddev"),
     ],
 )
-def test_read_lasers_rejects_bad_values(old: str, new: str, message: str) -> None:
+def test_read_sensors_lasers_rejects_bad_values(old: str, new: str, message: str) -> None:
     with pytest.raises(ModelError, match=message):
-        read_lasers(LASER_URDF.replace(old, new))
+        read_sensors(LASER_URDF.replace(old, new))
 
 
 def test_ray_sensor_plugin_and_no_plugin() -> None:
     ray_sensor = LASER_URDF.replace("libgazebo_ros_laser.so", "libgazebo_ros_ray_sensor.so")
-    assert read_lasers(ray_sensor)[0].topic == "/scan"
+    assert read_sensors(ray_sensor).lasers[0].topic == "/scan"
     no_plugin = LASER_URDF.replace("libgazebo_ros_laser.so", "libother.so")
-    assert read_lasers(no_plugin)[0].topic == ""
+    assert read_sensors(no_plugin).lasers[0].topic == ""
 
 
 # --- laser scans ----------------------------------------------------------------------------
@@ -330,11 +330,14 @@ def test_cliff_when_lifted_and_floor_when_back() -> None:
     cliff = CliffSensor(sim.physics, sim.model)
     assert cliff.changes() == []
     sim.model.set_pose(0.0, 0.0, 0.1)
-    assert cliff.changes() == [(LEFT, CLIFF), (CENTER, CLIFF), (RIGHT, CLIFF)]
+    lifted = cliff.changes()
+    assert [(sensor, state) for sensor, state, _ in lifted] == [(LEFT, CLIFF), (CENTER, CLIFF), (RIGHT, CLIFF)]
+    assert [distance for _, _, distance in lifted] == pytest.approx([0.1316] * 3, abs=0.003)
     assert cliff.changes() == []
     sim.model.set_pose(0.0, 0.0, 0.0)
     sim.settle()
-    assert cliff.changes() == [(LEFT, FLOOR), (CENTER, FLOOR), (RIGHT, FLOOR)]
+    back = cliff.changes()
+    assert [(sensor, state) for sensor, state, _ in back] == [(LEFT, FLOOR), (CENTER, FLOOR), (RIGHT, FLOOR)]
 
 
 def test_front_cliff_over_the_edge_of_a_platform() -> None:
@@ -345,7 +348,7 @@ def test_front_cliff_over_the_edge_of_a_platform() -> None:
     left, front, right = cliff.distances()
     assert left == pytest.approx(0.0316, abs=0.003) and right == pytest.approx(0.0316, abs=0.003)
     assert front == pytest.approx(0.0816, abs=0.003)  # down to the ground beyond the edge
-    assert cliff.changes() == [(CENTER, CLIFF)]
+    assert cliff.changes() == [(CENTER, CLIFF, front)]
 
 
 def test_tilted_laser_sees_the_ground_and_boxes() -> None:
@@ -360,3 +363,42 @@ def test_tilted_laser_sees_the_ground_and_boxes() -> None:
     slight = laser_config(pose=(0.0, 0.0, 0.0, 0.0, 0.02, 0.0))  # above the "level" tolerance
     ranges = LaserScanner(sim.physics, sim.model, "base_scan", slight).scan()
     assert ranges[beam(slight, 0.0)] == pytest.approx((0.9 - x) / math.cos(0.02), abs=0.01)
+
+
+# --- IMU and contact sensor tags ------------------------------------------------------------------
+SENSOR_BLOCKS = """
+  <gazebo reference="imu_link">
+    <sensor type="imu" name="imu">
+      <update_rate>100</update_rate>
+      <plugin name="imu_sensor" filename="libgazebo_ros_imu_sensor.so">
+        <topicName>imu/data</topicName><frameName>imu_frame</frameName><gaussianNoise>0.002</gaussianNoise>
+      </plugin>
+    </sensor>
+  </gazebo>
+  <gazebo reference="base_link">
+    <sensor type="contact" name="bumper">
+      <update_rate>25</update_rate>
+      <contact><collision>base_link_collision</collision></contact>
+      <plugin name="bumper_plugin" filename="libgazebo_ros_bumper.so">
+        <bumperTopicName>base_bumper</bumperTopicName><frameName>base_link</frameName>
+      </plugin>
+    </sensor>
+    <sensor type="contact" name="no_ros"><contact><collision>base_link_collision</collision></contact></sensor>
+  </gazebo>
+"""
+
+
+def test_read_sensors_imu_and_contact_tags() -> None:
+    blocks = read_sensors(BARE_URDF.replace("</robot>", SENSOR_BLOCKS + "</robot>"))
+    (imu,) = blocks.imus
+    assert (imu.link, imu.topic, imu.frame, imu.update_rate) == ("imu_link", "imu/data", "imu_frame", 100.0)
+    assert imu.noise.angular_velocity == imu.noise.linear_acceleration == 0.002
+    (contact,) = blocks.contacts  # the sensor without a ROS plugin publishes nothing
+    assert (contact.link, contact.name, contact.collisions) == ("base_link", "bumper", ("base_link_collision",))
+    assert (contact.topic, contact.frame, contact.update_rate) == ("base_bumper", "base_link", 25.0)
+
+
+def test_read_sensors_rejects_bad_imu_rate() -> None:
+    bad = SENSOR_BLOCKS.replace("<update_rate>100</update_rate>", "<update_rate>-1</update_rate>")
+    with pytest.raises(ModelError, match="<update_rate> must be >= 0"):
+        read_sensors(BARE_URDF.replace("</robot>", bad + "</robot>"))
