@@ -79,6 +79,14 @@ def test_shell_scripts_parse():
         assert result.returncode == 0, script + ": " + result.stdout
 
 
+def test_launch_files_keep_nodes_on_loopback():
+    """ROS 1 has no authentication: every launch file gives its nodes ROS_IP=127.0.0.1 unless the user set one."""
+    loopback = '<env name="ROS_IP" value="$(optenv ROS_IP 127.0.0.1)"/>'
+    launch_files = [f for f in tracked_files(".launch") if "/launch/" in f]
+    assert launch_files
+    assert [f for f in launch_files if loopback not in open(f).read()] == []
+
+
 @pytest.mark.parametrize("platform", ["debian", "ubuntu"])
 def test_every_dependency_resolves(platform):
     """Each key the package.xml files name has a system package on both supported platforms."""
