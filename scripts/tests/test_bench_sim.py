@@ -1,0 +1,102 @@
+"""scripts/bench_sim.py --quick --no-peer: it runs, stops what it started and writes every section with positive, finite
+figures. Its targets are not checked here: they judge the simulator, not the benchmark."""
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+
+import pytest
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+BENCH = os.path.join(REPO, "scripts", "bench_sim.py")
+ROS_PYTHON = "/usr/bin/python3"
+TIMEOUT_S = 600  # --quick takes about 90 s on 2 cores; a busy machine may take longer
+SECTIONS = ("physics_only", "full_node", "real_time", "launch")
+# 0 = unthrottled; linearity needs three robot counts, --quick has two ([] stands for any list index)
+MAY_BE_ZERO_OR_NONE = {
+    "full_node.real_time_factor",
+    "full_node.runs[].real_time_factor",
+    "full_node.linearity_at_1ms.wall",
+    "full_node.linearity_at_1ms.node_cpu",
+}
+
+
+def ros_missing():
+    """Why the benchmark cannot run here, or None."""
+    if not os.access(ROS_PYTHON, os.X_OK):
+        return ROS_PYTHON + " not found"
+    if not shutil.which("roscore") or not shutil.which("roslaunch"):
+        return "roscore/roslaunch not on PATH: source catkin_ws/devel/setup.bash"
+    result = subprocess.run(
+        [ROS_PYTHON, "-c", "import rospy, gazebo_msgs, turtle_sim_ode"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        universal_newlines=True,
+    )
+    if result.returncode != 0:
+        return "ROS or the workspace is not importable by %s (source catkin_ws/devel/setup.bash): %s" % (
+            ROS_PYTHON,
+            result.stdout.strip().splitlines()[-1],
+        )
+    return None
+
+
+def bad_figures(value, path):
+    """Paths of the numbers under ``value`` that are not positive and finite."""
+    if isinstance(value, dict):
+        return [bad for key, item in value.items() for bad in bad_figures(item, path + "." + key)]
+    if isinstance(value, list):
+        return [bad for index, item in enumerate(value) for bad in bad_figures(item, "%s[%d]" % (path, index))]
+    if re.sub(r"\[\d+\]", "[]", path) in MAY_BE_ZERO_OR_NONE:
+        return []
+    if value is None or (isinstance(value, (int, float)) and not (math.isfinite(value) and value > 0)):
+        return ["%s = %r" % (path, value)]
+    return []
+
+
+@pytest.fixture(scope="module")
+def results(tmp_path_factory):
+    reason = ros_missing()
+    if reason:
+        pytest.skip(reason)
+    json_path = str(tmp_path_factory.mktemp("bench") / "bench_sim.json")
+    bench = subprocess.Popen(
+        [ROS_PYTHON, BENCH, "--quick", "--no-peer", "--json", json_path],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        universal_newlines=True,
+    )
+    try:
+        output, _ = bench.communicate(timeout=TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        bench.terminate()  # SIGTERM: the benchmark stops its masters and nodes
+        output, _ = bench.communicate()
+        pytest.fail("bench_sim.py --quick took over %d s:\n%s" % (TIMEOUT_S, output[-5000:]))
+    assert bench.returncode == 0, output[-5000:]
+    assert "targets" in output, output[-5000:]
+    with open(json_path) as json_file:
+        return json.load(json_file)
+
+
+def test_every_section_has_positive_finite_figures(results):
+    assert results["mode"] == "quick"
+    for section in SECTIONS:
+        assert section in results and "error" not in results[section], results.get(section)
+        assert not bad_figures(results[section], section)
+
+
+def test_full_node_covers_robot_counts_and_time_steps_with_every_sensor(results):
+    runs = results["full_node"]["runs"]
+    assert sorted((run["robots"], run["time_step"]) for run in runs) == [(1, 0.001), (1, 0.01), (2, 0.001), (2, 0.01)]
+    for run in runs:
+        assert set(run["rates_per_robot_hz"]) == {"odom", "joint_states", "imu", "scan", "tf"}
+
+
+def test_machine_peer_and_targets_are_recorded(results):
+    machine = results["machine"]
+    assert machine["nproc"] >= 1 and machine["cpu_model"] and machine["python"]
+    assert results["peer"]["status"] == "skipped"
+    assert len(results["targets"]) == 7
+    assert all(target["pass"] in (True, False, None) for target in results["targets"])
