@@ -6,18 +6,20 @@ succeeds. Unlike gazebo_ros, spawning never waits on sim time (Gazebo's spawn ha
 """
 from __future__ import annotations
 
-import re
+import contextlib
 import threading
 from typing import Callable, Sequence, Tuple
 
 import rospy
+from rosgraph.names import is_legal_base_name, is_legal_name
 from gazebo_msgs import srv as gz
 from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEJointProperties, ODEPhysics
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from std_srvs.srv import Empty, EmptyResponse
 
+from .sdf_model import model_format, parse_sdf_model
 from .simulation import Simulation, WorldError
-from .urdf_model import ModelError
+from .urdf_model import ModelError, parse_urdf
 
 Vec3 = Tuple[float, float, float]
 State = Tuple[Vec3, Tuple[float, float, float, float], Vec3, Vec3]
@@ -38,17 +40,6 @@ def pose_msg(position: Sequence[float], quaternion: Sequence[float]) -> Pose:
 
 def twist_msg(linear: Sequence[float], angular: Sequence[float]) -> Twist:
     return Twist(Vector3(*linear), Vector3(*angular))
-
-
-_FIRST_ELEMENT = re.compile(r"<([A-Za-z_][\w.-]*)")
-_PROLOG = re.compile(r"<\?.*?\?>|<!--.*?-->", re.S)
-
-
-def _detect_format(xml: str) -> str:
-    """'urdf' or 'sdf' from the root element: either spawn service takes either, like gazebo_ros's spawn_model."""
-    match = _FIRST_ELEMENT.search(_PROLOG.sub("", xml))
-    root = match.group(1) if match else ""
-    return {"robot": "urdf", "sdf": "sdf", "model": "sdf"}.get(root, "unknown")
 
 
 class GazeboApi:
@@ -97,7 +88,7 @@ class GazeboApi:
             ("set_light_properties", gz.SetLightProperties, self._no_lights),
         ]
         self._services = [
-            rospy.Service("~" + name, srv_type, self._answer(name, srv_type, handler))
+            rospy.Service("~" + name, srv_type, self._answer(name, srv_type, handler, handler != self._spawn))
             for name, srv_type, handler in services
         ]
         self._services += [
@@ -116,9 +107,9 @@ class GazeboApi:
         self._next_states_time = 0.0
 
     # --- plumbing -------------------------------------------------------------------------------------------
-    def _answer(self, name: str, srv_type, handler):
-        """Wrap a handler: it fills the response under the world lock; a logical error becomes
-        success: false with the message, logged once as a warning."""
+    def _answer(self, name: str, srv_type, handler, locked: bool = True):
+        """Wrap a handler: it fills the response, under the world lock if ``locked`` (else it takes the lock itself);
+        a logical error becomes success: false with the message, logged once as a warning."""
         response_class = srv_type._response_class
 
         def serve(request):
@@ -126,7 +117,7 @@ class GazeboApi:
             # BodyRequest and JointRequest have empty responses: their failures can only be logged.
             reports = hasattr(response, "success")
             try:
-                with self._lock:
+                with self._lock if locked else contextlib.nullcontext():
                     handler(request, response)
                 if reports:
                     response.success = True
@@ -152,14 +143,32 @@ class GazeboApi:
 
     # --- models ---------------------------------------------------------------------------------------------
     def _spawn(self, request, response) -> None:
+        """Called without the world lock: the text is checked outside it, so that a large or malformed model is
+        refused without holding up the simulation; an accepted one is parsed again and spawned under it."""
         name = request.model_name
-        xml_format = _detect_format(request.model_xml)
+        if not name:
+            raise WorldError("model name is empty")
+        # Both end up in the names of the model's plugin topics (a name the master refuses hangs the registration).
+        if not is_legal_base_name(name):
+            raise WorldError(
+                "model name %r is not a legal ROS name (a letter, then letters, digits or '_'): its plugins' topics "
+                "are named after it" % name
+            )
+        if not is_legal_name(request.robot_namespace):
+            raise WorldError(
+                "robot_namespace %r of model '%s' is not a legal ROS namespace" % (request.robot_namespace, name)
+            )
+        if not request.model_xml.strip():
+            raise WorldError("model_xml of '%s' is empty" % name)
+        xml_format = model_format(request.model_xml)
         if xml_format == "unknown":
             raise WorldError("model_xml of '%s' is neither URDF (<robot>) nor SDF (<sdf> or <model>)" % name)
+        (parse_urdf if xml_format == "urdf" else parse_sdf_model)(request.model_xml)
         initial_pose = (xyz(request.initial_pose.position), quaternion_of(request.initial_pose))
         spawn = self._sim.spawn_urdf if xml_format == "urdf" else self._sim.spawn_sdf
-        warnings = spawn(name, request.model_xml, initial_pose, request.reference_frame)
-        self._on_spawn(name, request.robot_namespace)
+        with self._lock:
+            warnings = spawn(name, request.model_xml, initial_pose, request.reference_frame)
+            self._on_spawn(name, request.robot_namespace)
         response.status_message = "SpawnModel: Successfully spawned entity" + (
             " (warnings: %s)" % "; ".join(warnings) if warnings else ""
         )

@@ -9,7 +9,7 @@ import ode
 
 from . import ode_constants as oc
 from .physics import PhysicsWorld, SurfaceParams
-from .urdf_model import Box, Cylinder, Geometry, Joint, ModelError, Pose, RobotModel, Sphere
+from .urdf_model import MAX_LENGTH, Box, Cylinder, Geometry, Joint, ModelError, Pose, RobotModel, Sphere
 
 Vec3 = Tuple[float, float, float]
 Quat = Tuple[float, float, float, float]  # (w, x, y, z) as ODE; only link_pose gives ROS's xyzw
@@ -430,7 +430,7 @@ def build_model(
     self_collide: bool = False,
 ) -> BuiltModel:
     """Create the model with its model frame (a URDF's root link) at pose (x, y, z, roll,
-    pitch, yaw).
+    pitch, yaw), x, y, z within MAX_LENGTH of the world origin.
 
     Links attached by fixed joints are merged into their parent's body (mass, COM and
     inertia combined, collisions kept); a "floating" joint leaves its child a free body.
@@ -440,6 +440,8 @@ def build_model(
     """
     if len(pose) != 6 or not all(math.isfinite(v) for v in pose):
         raise ValueError(f"pose must be 6 finite numbers (x, y, z, roll, pitch, yaw), got {pose!r}")
+    if any(abs(v) > MAX_LENGTH for v in pose[:3]):
+        raise ValueError(f"pose x, y, z must be within {MAX_LENGTH:g} m of the world origin, got {tuple(pose[:3])!r}")
     world_of: Dict[str, Transform] = {
         robot.root: compose(((pose[0], pose[1], pose[2]), quat_from_rpy(*pose[3:])), pose_transform(robot.root_pose))
     }

@@ -8,6 +8,7 @@ SDF) hang off the root by "floating" joints, which the builder turns into free b
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Dict, List, Optional, Set, Tuple
 from xml.etree.ElementTree import Element, ParseError
@@ -17,8 +18,7 @@ import defusedxml.ElementTree as SafeET
 
 from .model_builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
 from .urdf_model import (
-    MAX_JOINTS,
-    MAX_LINKS,
+    MAX_LENGTH,
     MAX_URDF_CHARS,
     MESH_PLACEHOLDER_EDGE,
     Box,
@@ -37,10 +37,14 @@ from .urdf_model import (
     RobotModel,
     Sphere,
     Vec3,
+    _bounded,
+    _check_mass,
     _find_root,
     _is_positive_definite,
     _number,
+    _offset,
     _vec3,
+    check_size,
 )
 
 if TYPE_CHECKING:
@@ -216,7 +220,7 @@ def _pose(element: Element, what: str) -> Pose:
     if len(parts) != 6:
         raise ModelError(f"{what} <pose>: expected 6 numbers, got {pose.text!r}")
     values = [_number(p, f"{what} <pose>") for p in parts]
-    return Pose((values[0], values[1], values[2]), (values[3], values[4], values[5]))
+    return Pose(_offset((values[0], values[1], values[2]), f"{what} <pose> x y z"), (values[3], values[4], values[5]))
 
 
 def _plugin(element: Element, what: str) -> GazeboPlugin:
@@ -258,12 +262,11 @@ def _parse_inertial(element: Optional[Element], link: str, warnings: List[str]) 
         warnings.append(f"link '{link}' has no <inertial>: SDF's default mass 1 kg and " f"inertia 1 kg m^2 are used")
         return Inertial(1.0, Pose(), 1.0, 0.0, 0.0, 1.0, 0.0, 1.0)
     mass = _float(element, "mass", what, 1.0)
-    if mass <= 0:
-        raise ModelError(f"{what}: mass must be > 0, got {mass}")
     values = {
         k: _float(element, f"inertia/{k}", what, 1.0 if k in ("ixx", "iyy", "izz") else 0.0)
         for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
     }
+    _check_mass(mass, values, what)
     result = Inertial(mass, _pose(element, what), **values)
     if not _is_positive_definite(result.matrix()):
         raise ModelError(f"{what}: inertia matrix is not positive definite ({values})")
@@ -274,7 +277,7 @@ def _positive(element: Element, path: str, what: str, default: float) -> float:
     value = _float(element, path, what, default)
     if value <= 0:
         raise ModelError(f"{what} <{path}> must be > 0, got {value}")
-    return value
+    return _bounded(value, MAX_LENGTH, f"{what} <{path}> (m)")
 
 
 def _plane_to_z(normal: Vec3) -> Quat:
@@ -300,7 +303,7 @@ def _parse_geometry(
         size = _vec3(_text(shape, "size"), f"{what} <size>", (1.0, 1.0, 1.0))
         if min(size) <= 0:
             raise ModelError(f"{what} <size> must be > 0, got {size}")
-        return Box(size), identity
+        return Box(_offset(size, f"{what} <size>")), identity
     if shape.tag == "cylinder":
         return (Cylinder(_positive(shape, "radius", what, 0.5), _positive(shape, "length", what, 1.0)), identity)
     if shape.tag == "sphere":
@@ -319,6 +322,7 @@ def _parse_geometry(
         sx, sy = (_number(s, f"{what} <size>") for s in size)
         if min(sx, sy) <= 0:
             raise ModelError(f"{what} <size> must be > 0, got {sx} {sy}")
+        _offset((sx, sy, PLANE_THICKNESS), f"{what} <size>")
         half = PLANE_THICKNESS / 2
         return (
             Box((sx, sy, PLANE_THICKNESS)),
@@ -329,6 +333,7 @@ def _parse_geometry(
         size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
         if min(size) <= 0:
             raise ModelError(f"{what} <scale> must not be zero, got {scale}")
+        _offset(size, f"{what} placeholder box for <scale> {scale}")
         warnings.append(
             f"{what}: mesh '{_text(shape, 'uri') or ''}' is not loaded; colliding "
             f"with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead"
@@ -469,11 +474,7 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
     link_elements, joint_elements = element.findall("link"), element.findall("joint")
     if not link_elements:
         raise ModelError(f"{what} has no <link>")
-    if len(link_elements) > MAX_LINKS or len(joint_elements) > MAX_JOINTS:
-        raise ModelError(
-            f"{what} too large: {len(link_elements)} links, {len(joint_elements)} "
-            f"joints (limits {MAX_LINKS}, {MAX_JOINTS})"
-        )
+    check_size(what, link_elements, joint_elements)
     model = RobotModel(name, {}, {}, "", static=static)
     link_poses: Dict[str, Transform] = {}
     for link_element in link_elements:
@@ -506,6 +507,30 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
 
 
 # --- public ------------------------------------------------------------------------------
+# The root element's name, or the start of markup skipped before it: a processing instruction or a comment.
+_MARKUP = re.compile(r"<(\?|!--|[A-Za-z_][\w.-]*)")
+_MARKUP_ENDS = {"?": "?>", "!--": "-->"}
+_FORMATS = {"robot": "urdf", "sdf": "sdf", "model": "sdf"}
+
+
+def model_format(xml: str) -> str:
+    """'urdf', 'sdf' or 'unknown' from the root element (gazebo_ros's spawn services take either format). Linear
+    in the text, whatever it holds: a regular expression that skipped comments with ``.*?`` took quadratic time
+    on a text of unterminated ones."""
+    position = 0
+    while True:
+        match = _MARKUP.search(xml, position)
+        if match is None:
+            return "unknown"
+        token = match.group(1)
+        if token not in _MARKUP_ENDS:
+            return _FORMATS.get(token, "unknown")
+        end = xml.find(_MARKUP_ENDS[token], match.end())
+        if end < 0:
+            return "unknown"
+        position = end + len(_MARKUP_ENDS[token])
+
+
 def parse_sdf_model(text: str) -> RobotModel:
     """Parse ``<sdf version><model>`` or a bare ``<model>`` (read as SDF 1.7).
 

@@ -5,7 +5,12 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Dict, Mapping, Tuple
 
+from rosgraph.names import is_legal_base_name
+
+from .diff_drive import DiffDriveParams
 from .physics import PhysicsParams
+from .urdf_model import MAX_LENGTH
+from .world_control import MAX_GRAVITY
 
 # Parameters of physics.yaml, read into PhysicsParams (checked again by PhysicsParams.validate()).
 PHYSICS_PARAMS = (
@@ -27,6 +32,16 @@ DRIVE_OVERRIDES = (
     "max_angular",
     "cmd_timeout",
     "odometry_integration",
+)
+
+# ~spawn_<axis> and its range: a position within the world's extent (m), any angle (rad).
+SPAWN_AXES = (
+    ("x", MAX_LENGTH),
+    ("y", MAX_LENGTH),
+    ("z", MAX_LENGTH),
+    ("roll", math.inf),
+    ("pitch", math.inf),
+    ("yaw", math.inf),
 )
 
 
@@ -56,13 +71,20 @@ class SimulatorSettings:
 
 
 def _number(
-    params: Mapping[str, Any], name: str, default: float, minimum: float = -math.inf, exclusive: bool = False
+    params: Mapping[str, Any],
+    name: str,
+    default: float,
+    minimum: float = -math.inf,
+    exclusive: bool = False,
+    maximum: float = math.inf,
 ) -> float:
     value = params.get(name, default)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise SettingsError(f"parameter ~{name} must be a finite number, got [{value!r}]")
     if value < minimum or (exclusive and value == minimum):
         raise SettingsError(f"parameter ~{name} must be {'>' if exclusive else '>='} {minimum}, got [{value!r}]")
+    if value > maximum:
+        raise SettingsError(f"parameter ~{name} must be <= {maximum:g}, got [{value!r}]")
     return float(value)
 
 
@@ -84,7 +106,9 @@ def _physics(params: Mapping[str, Any]) -> PhysicsParams:
             gravity = params[name]
             if not isinstance(gravity, (list, tuple)) or len(gravity) != 3:
                 raise SettingsError(f"parameter ~gravity must be a list of 3 numbers, got [{gravity!r}]")
-            values[name] = tuple(_number({"gravity": g}, "gravity", 0.0) for g in gravity)
+            values[name] = tuple(
+                _number({"gravity": g}, "gravity", 0.0, -MAX_GRAVITY, maximum=MAX_GRAVITY) for g in gravity
+            )
         elif name == "solver":
             values[name] = _typed(params, name, default, str)
         elif isinstance(default, int):
@@ -108,10 +132,15 @@ def _drive_overrides(params: Mapping[str, Any]) -> Dict[str, Any]:
         raise SettingsError(f"parameter ~diff_drive has unknown keys {unknown}; known: {list(DRIVE_OVERRIDES)}")
     checked: Dict[str, Any] = {}
     for name, value in overrides.items():
+        key = "diff_drive/" + name
         if name == "odometry_integration":
-            checked[name] = _typed(overrides, name, "midpoint", str)
+            checked[name] = _typed({key: value}, key, "midpoint", str)
         else:
-            checked[name] = _number(overrides, name, 0.0, minimum=0.0)
+            checked[name] = _number({key: value}, key, 0.0, minimum=0.0)
+    try:
+        DiffDriveParams(**checked).validate()
+    except ValueError as error:
+        raise SettingsError(f"parameter ~diff_drive/{error}") from None
     return checked
 
 
@@ -125,7 +154,7 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
         publish_rate=_number(params, "publish_rate", defaults.publish_rate, 0.0, True),
         model_states_rate=_number(params, "model_states_rate", defaults.model_states_rate, 0.0, True),
         publish_tf=_typed(params, "publish_tf", defaults.publish_tf, bool),
-        spawn_pose=tuple(_number(params, "spawn_" + axis, 0.0) for axis in ("x", "y", "z", "roll", "pitch", "yaw")),
+        spawn_pose=tuple(_number(params, "spawn_" + axis, 0.0, -limit, maximum=limit) for axis, limit in SPAWN_AXES),
         physics=_physics(params),
         drive_overrides=_drive_overrides(params),
     )
@@ -142,4 +171,9 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
     for name in ("odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame"):
         if not getattr(settings, name):
             raise SettingsError(f"parameter ~{name} must not be empty")
+    if settings.spawn_model_name and not is_legal_base_name(settings.spawn_model_name):
+        raise SettingsError(
+            f"parameter ~spawn_model_name must be a legal ROS name (a letter, then letters, digits or '_'), "
+            f"got [{settings.spawn_model_name!r}]"
+        )
     return settings

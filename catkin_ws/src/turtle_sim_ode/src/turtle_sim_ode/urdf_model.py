@@ -11,9 +11,18 @@ import defusedxml.ElementTree as SafeET
 
 Vec3 = Tuple[float, float, float]
 
+# Size limits of one model: a request beyond them is refused at once with the limit in the message, rather than
+# holding the world for seconds while it is built and slowing every step after (1000 colliding links resting on
+# the ground cost ~15 ms a step, 10x the real-time budget; 10,000 collisions on one body ~0.4 s a step).
 MAX_LINKS = 1000
 MAX_JOINTS = 1000
+MAX_COLLISIONS = 1000
 MAX_URDF_CHARS = 10_000_000
+# Magnitude limits: lengths (offsets, sizes) in m, masses in kg, inertia entries in kg m^2. Beyond them ODE's
+# collision grid or integrator overflows and aborts the whole process (offsets of 1e12 m, inertias of 1e300).
+MAX_LENGTH = 1e6
+MAX_MASS = 1e9
+MAX_INERTIA = 1e12
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
 # Stand-in for a mesh collision: mesh files are never opened, so their size is unknown.
 MESH_PLACEHOLDER_EDGE = 0.01
@@ -169,11 +178,25 @@ def _vec3(text: Optional[str], what: str, default: Vec3) -> Vec3:
     return (_number(parts[0], what), _number(parts[1], what), _number(parts[2], what))
 
 
+def _bounded(value: float, limit: float, what: str) -> float:
+    """``value`` unless its magnitude exceeds ``limit``."""
+    if abs(value) > limit:
+        raise ModelError(f"{what} must be at most {limit:g} in magnitude, got {value:g}")
+    return value
+
+
+def _offset(xyz: Vec3, what: str) -> Vec3:
+    """A translation whose every coordinate is within MAX_LENGTH metres."""
+    for value in xyz:
+        _bounded(value, MAX_LENGTH, f"{what} (m)")
+    return xyz
+
+
 def _pose(element: Optional[Element], what: str) -> Pose:
     if element is None:
         return Pose()
     return Pose(
-        _vec3(element.get("xyz"), f"{what} origin xyz", (0.0, 0.0, 0.0)),
+        _offset(_vec3(element.get("xyz"), f"{what} origin xyz", (0.0, 0.0, 0.0)), f"{what} origin xyz"),
         _vec3(element.get("rpy"), f"{what} origin rpy", (0.0, 0.0, 0.0)),
     )
 
@@ -186,9 +209,19 @@ def _required(element: Element, attribute: str, what: str) -> str:
 
 
 def _positive(value: float, what: str) -> float:
+    """A length: > 0 and at most MAX_LENGTH metres."""
     if value <= 0:
         raise ModelError(f"{what} must be > 0, got {value}")
-    return value
+    return _bounded(value, MAX_LENGTH, f"{what} (m)")
+
+
+def _check_mass(mass: float, inertia: Dict[str, float], what: str) -> None:
+    """ModelError unless 0 < mass <= MAX_MASS and every inertia entry is within MAX_INERTIA."""
+    if mass <= 0:
+        raise ModelError(f"{what}: mass must be > 0, got {mass}")
+    _bounded(mass, MAX_MASS, f"{what}: mass (kg)")
+    for key, value in inertia.items():
+        _bounded(value, MAX_INERTIA, f"{what}: {key} (kg m^2)")
 
 
 def _is_positive_definite(m: Tuple[Vec3, Vec3, Vec3]) -> bool:
@@ -209,12 +242,11 @@ def _parse_inertial(element: Element, link: str) -> Inertial:
     if mass_element is None:
         raise ModelError(f"{what}: missing <mass>")
     mass = _number(mass_element.get("value"), f"{what} mass")
-    if mass <= 0:
-        raise ModelError(f"{what}: mass must be > 0, got {mass}")
     inertia = element.find("inertia")
     if inertia is None:
         raise ModelError(f"{what}: missing <inertia>")
     values = {k: _number(inertia.get(k, "0"), f"{what} {k}") for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    _check_mass(mass, values, what)
     result = Inertial(mass, _pose(element.find("origin"), what), **values)
     if not _is_positive_definite(result.matrix()):
         raise ModelError(
@@ -245,7 +277,7 @@ def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) 
         scale = _vec3(shape.get("scale"), f"{what} mesh scale", (1.0, 1.0, 1.0))
         size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
         for value in size:
-            _positive(value, f"{what} mesh scale")
+            _positive(value, f"{what} placeholder box for mesh scale {scale}")
         warnings.append(
             f"{what}: mesh '{shape.get('filename', '')}' is not loaded; "
             f"colliding with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead"
@@ -348,6 +380,16 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
 
 
 # --- validation -----------------------------------------------------------------------
+def check_size(what: str, link_elements: List[Element], joint_elements: List[Element]) -> None:
+    """ModelError naming the limits if a model has more links, joints or collisions than allowed."""
+    collisions = sum(len(link.findall("collision")) for link in link_elements)
+    if len(link_elements) > MAX_LINKS or len(joint_elements) > MAX_JOINTS or collisions > MAX_COLLISIONS:
+        raise ModelError(
+            f"{what} too large: {len(link_elements)} links, {len(joint_elements)} joints, {collisions} collisions "
+            f"(limits {MAX_LINKS}, {MAX_JOINTS}, {MAX_COLLISIONS})"
+        )
+
+
 def _find_root(links: Dict[str, Link], joints: Dict[str, Joint]) -> str:
     parent_of: Dict[str, str] = {}
     for joint in joints.values():
@@ -398,11 +440,7 @@ def parse_urdf(text: str) -> RobotModel:
     link_elements, joint_elements = robot.findall("link"), robot.findall("joint")
     if not link_elements:
         raise ModelError("URDF has no <link>")
-    if len(link_elements) > MAX_LINKS or len(joint_elements) > MAX_JOINTS:
-        raise ModelError(
-            f"model too large: {len(link_elements)} links, {len(joint_elements)} "
-            f"joints (limits {MAX_LINKS}, {MAX_JOINTS})"
-        )
+    check_size("model", link_elements, joint_elements)
     warnings: List[str] = []
     links: Dict[str, Link] = {}
     for element in link_elements:

@@ -29,7 +29,7 @@ from .model_builder import (
     quat_rotate,
 )
 from .physics import PhysicsWorld
-from .urdf_model import _is_positive_definite
+from .urdf_model import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
 
 if TYPE_CHECKING:
     from .simulation import DiffDriveRobot
@@ -54,6 +54,13 @@ JOINT_TYPES = {"revolute": REVOLUTE, "continuous": CONTINUOUS, "prismatic": PRIS
 SOR_PGS_W = 1.3
 # Tolerance on sim-time comparisons when scheduling loads (s).
 TIME_EPSILON = 1e-9
+# Limits on what a request may set, far beyond any robot's needs: positions within MAX_LENGTH (m) of the world
+# origin, speeds (m/s, rad/s) and forces (N, N m). Finite values beyond them make ODE abort the whole process
+# within a few steps (its collision grid takes coordinates below ~1e8 m; a 1e300 N push overflows).
+MAX_SPEED = 1e4
+MAX_FORCE = 1e6
+# Gravity (m/s^2) beyond which resting bodies tunnel through the ground and fall until ODE aborts (1e6 does).
+MAX_GRAVITY = 1e3
 
 # gazebo_msgs/ODEJointProperties fields set with joint.setParam (first axis only).
 _JOINT_PARAMS = (
@@ -67,6 +74,8 @@ _JOINT_PARAMS = (
     ("fmax", oc.PARAM_FMAX),
     ("vel", oc.PARAM_VEL),
 )
+# Magnitude limits of the ODEJointProperties fields that drive a joint.
+_JOINT_LIMITS = {"fmax": MAX_FORCE, "vel": MAX_SPEED}
 
 
 class WorldError(ValueError):
@@ -154,15 +163,17 @@ class Load:
 
 
 # --- values -------------------------------------------------------------------------------
-def finite(value: object, what: str) -> float:
-    """``value`` as a float; WorldError unless it is a finite number."""
+def finite(value: object, what: str, limit: float = math.inf) -> float:
+    """``value`` as a float; WorldError unless it is a finite number of magnitude at most ``limit``."""
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise WorldError(f"{what} must be a finite number, got {value!r}")
+    if abs(value) > limit:
+        raise WorldError(f"{what} must be at most {limit:g} in magnitude, got {value!r}")
     return float(value)
 
 
-def vector(values: Any, size: int, what: str) -> Tuple[float, ...]:
-    """``size`` finite numbers as a tuple of floats, or WorldError."""
+def vector(values: Any, size: int, what: str, limit: float = math.inf) -> Tuple[float, ...]:
+    """``size`` finite numbers, each of magnitude at most ``limit``, as a tuple of floats, or WorldError."""
     try:
         ok = len(values) == size and all(
             not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v) for v in values
@@ -171,20 +182,27 @@ def vector(values: Any, size: int, what: str) -> Tuple[float, ...]:
         ok = False
     if not ok:
         raise WorldError(f"{what} must be {size} finite numbers, got {values!r}")
+    if any(abs(v) > limit for v in values):
+        raise WorldError(f"{what} must be at most {limit:g} in magnitude on each axis, got {tuple(values)!r}")
     return tuple(float(v) for v in values)
 
 
-def vec3(values: Any, what: str) -> Vec3:
-    """Three finite numbers, or WorldError."""
-    x, y, z = vector(values, 3, what)
+def vec3(values: Any, what: str, limit: float = math.inf) -> Vec3:
+    """Three finite numbers of magnitude at most ``limit``, or WorldError."""
+    x, y, z = vector(values, 3, what, limit)
     return (x, y, z)
 
 
 def orientation(quaternion: Sequence[float], what: str) -> Quat:
-    """Unit (w, x, y, z) from a ROS (x, y, z, w) quaternion; all zeros mean no rotation."""
+    """Unit (w, x, y, z) from a ROS (x, y, z, w) quaternion; all zeros mean no rotation. Scaled before
+    squaring, so that huge components do not overflow to a zero quaternion."""
     x, y, z, w = vector(quaternion, 4, what)
+    scale = max(abs(x), abs(y), abs(z), abs(w))
+    if scale == 0:
+        return (1.0, 0.0, 0.0, 0.0)
+    x, y, z, w = x / scale, y / scale, z / scale, w / scale
     norm = math.sqrt(x * x + y * y + z * z + w * w)
-    if norm < 1e-10:
+    if norm * scale < 1e-10:
         return (1.0, 0.0, 0.0, 0.0)
     return (w / norm, x / norm, y / norm, z / norm)
 
@@ -352,16 +370,17 @@ class WorldControl:
         reference_frame: str,
     ) -> Tuple[Transform, Vec3, Vec3]:
         """Validated world pose and twist from ones relative to ``reference_frame`` (the
-        inverse of ``_relative``)."""
-        pose: Transform = (vec3(position, "position"), orientation(quaternion, "orientation"))
-        velocity = vec3(linear, "linear velocity")
-        spin = vec3(angular, "angular velocity")
+        inverse of ``_relative``); the position must be within MAX_LENGTH of the world origin."""
+        pose: Transform = (vec3(position, "position", MAX_LENGTH), orientation(quaternion, "orientation"))
+        velocity = vec3(linear, "linear velocity", MAX_SPEED)
+        spin = vec3(angular, "angular velocity", MAX_SPEED)
         frame = self._frame(reference_frame)
         if frame is not None:
             frame_pose, frame_linear, frame_angular = frame
             pose = compose(frame_pose, pose)
             velocity = _add(quat_rotate(frame_pose[1], velocity), frame_linear)
             spin = _add(quat_rotate(frame_pose[1], spin), frame_angular)
+            vec3(pose[0], f"position relative to the world (from '{reference_frame}')", MAX_LENGTH)
         return pose, velocity, spin
 
     def get_model_state(self, name: str, reference_frame: str = "") -> EntityState:
@@ -473,12 +492,12 @@ class WorldControl:
         frame, ``inertia`` (ixx, ixy, ixz, iyy, iyz, izz) about the COM in the COM's axes.
         The links stay where they are."""
         model, link, body = self._link_body(name)
-        com = vec3(com_position, "com position")
+        com = vec3(com_position, "com position", MAX_LENGTH)
         rotation = orientation(com_orientation, "com orientation")
-        mass = finite(mass, "mass")
+        mass = finite(mass, "mass", MAX_MASS)
         if mass <= 0:
             raise WorldError(f"mass must be > 0, got {mass}")
-        ixx, ixy, ixz, iyy, iyz, izz = vector(inertia, 6, "inertia (ixx, ixy, ixz, iyy, iyz, izz)")
+        ixx, ixy, ixz, iyy, iyz, izz = vector(inertia, 6, "inertia (ixx, ixy, ixz, iyy, iyz, izz)", MAX_INERTIA)
         matrix = ((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz))
         if not _is_positive_definite(matrix):
             raise WorldError(
@@ -538,7 +557,7 @@ class WorldControl:
                     raise WorldError(f"{key} must be a number, got {value!r}")
                 values[key] = float(value)
                 continue
-            values[key] = finite(value, key)
+            values[key] = finite(value, key, _JOINT_LIMITS.get(key, math.inf))
             if key in ("erp", "stop_erp", "fudge_factor") and not 0 <= values[key] <= 1:
                 raise WorldError(f"{key} must be in [0, 1], got {values[key]}")
             if key in ("damping", "cfm", "stop_cfm", "fmax") and values[key] < 0:
@@ -601,7 +620,7 @@ class WorldControl:
         params = replace(
             self.physics.params,
             time_step=finite(time_step, "time_step"),
-            gravity=vec3(gravity, "gravity"),
+            gravity=vec3(gravity, "gravity", MAX_GRAVITY),
             solver_iterations=iterations,
             erp=finite(erp, "erp"),
             cfm=finite(cfm, "cfm"),
@@ -646,7 +665,7 @@ class WorldControl:
             joint = name[len(model_name) + len(SCOPE) :] if name.startswith(model_name + SCOPE) else name
             if joint not in model.joints:
                 raise WorldError(f"model '{model_name}' has no joint '{name}'")
-            targets[joint] = finite(position, f"position of joint '{name}'")
+            targets[joint] = finite(position, f"position of joint '{name}'", MAX_LENGTH)
         if not targets:
             return
         _set_configuration(model, targets)
@@ -685,9 +704,9 @@ class WorldControl:
         """
         model, link_name, body = self._link_body(link)
         frame = self._frame(reference_frame)
-        lever = vec3(reference_point, "reference_point")
-        push = vec3(force, "force")
-        turn = vec3(torque, "torque")
+        lever = vec3(reference_point, "reference_point", MAX_LENGTH)
+        push = vec3(force, "force", MAX_FORCE)
+        turn = vec3(torque, "torque", MAX_FORCE)
         start, end = self._schedule(start_time, duration)
         if frame is not None:
             (origin, rotation), _, _ = frame
@@ -713,7 +732,7 @@ class WorldControl:
         """Torque (revolute) or force (prismatic) along the joint axis, positive towards
         increasing position, scheduled as ``apply_body_wrench``."""
         model, handle = self._joint(joint)
-        effort = finite(effort, "effort")
+        effort = finite(effort, "effort", MAX_FORCE)
         start, end = self._schedule(start_time, duration)
         add = handle.joint.addForce if handle.type == "prismatic" else handle.joint.addTorque
         self.loads.append(Load("effort", model.name, handle.name, lambda: add(effort), start, end))

@@ -53,7 +53,7 @@ def test_values_are_taken():
         ({"base_frame": 3}, "~base_frame must be of type str"),
         ({"spawn_x": "left"}, "~spawn_x must be a finite number"),
         ({"diff_drive": {"top_speed": 1}}, "~diff_drive has unknown keys ['top_speed']"),
-        ({"diff_drive": {"cmd_timeout": -1}}, "~cmd_timeout must be >= 0.0"),
+        ({"diff_drive": {"cmd_timeout": -1}}, "~diff_drive/cmd_timeout must be >= 0.0"),
         ({"diff_drive": 5}, "~diff_drive must be a dictionary"),
     ],
 )
