@@ -5,6 +5,7 @@ waits on ROS time itself.
 """
 from __future__ import annotations
 
+import math
 import os
 import threading
 import time
@@ -12,14 +13,15 @@ from typing import Dict, List, Optional
 
 import rospkg
 import rospy
-import tf2_ros
 from rosgraph_msgs.msg import Clock
+from tf2_msgs.msg import TFMessage
 from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepSimulationResponse
 
 from .gazebo_api import GazeboApi
 from .settings import SettingsError, SimulatorSettings, settings_from_params
 from .sdf_model import parse_sdf_world
 from .ros_plugins import Periodic, model_interfaces, sim_stamp
+from .ros_wire import ClockPacker, PackedPublisher, stamp_parts
 from .simulation import Simulation, WorldError
 from .urdf_model import ModelError
 
@@ -39,14 +41,19 @@ class SimulatorNode:
         self._unpaused = threading.Event()
         if not settings.paused:
             self._unpaused.set()
-        self._clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
-        self._tf = tf2_ros.TransformBroadcaster()
+        # Published at step rates: packed and written synchronously (see ros_wire). No tf2_ros broadcaster: rospy
+        # shares one publisher per topic in a process, and the broadcaster's queue would make /tf queued again.
+        self._clock_pub = PackedPublisher("/clock", Clock)
+        self._clock_packer = ClockPacker()
+        self._tf = PackedPublisher("/tf", TFMessage)
         self.interfaces: Dict[str, List[Periodic]] = {}
         self.api: Optional[GazeboApi] = None
         self._step_service: Optional[rospy.Service] = None
         # Sim time of the last step and of the next /clock message (a reset of the simulation goes below both).
         self._now = self.sim.sim_time
         self._next_clock = self._now
+        # The earliest next_due of all interfaces: most steps publish nothing and need not ask each of them.
+        self._next_due = math.inf
 
     def advertise(self) -> None:
         """Offer the /gazebo services and topics: only once the world file and start-up model are in, so that
@@ -68,10 +75,15 @@ class SimulatorNode:
         self.interfaces[name] = model_interfaces(name, self.sim, self.settings, self._tf, robot_namespace)
         for interface in self.interfaces[name]:
             interface.restart(self.sim.sim_time)
+        self._schedule()
 
     def _remove_interface(self, name: str) -> None:
         for interface in self.interfaces.pop(name, []):
             interface.close()
+        self._schedule()
+
+    def _schedule(self) -> None:
+        self._next_due = min((interface.next_due for interface in self._all_interfaces()), default=math.inf)
 
     def spawn_urdf(self, name: str, urdf: str, pose) -> List[str]:
         """Spawn a model at start-up; ModelError on a bad name or model."""
@@ -96,20 +108,25 @@ class SimulatorNode:
     # --- stepping -----------------------------------------------------------------------------------------
     def _advance(self) -> None:
         """One physics step, then /clock and every topic that fell due (call under the lock)."""
-        if self.sim.sim_time < self._now:  # /gazebo/reset_simulation: time starts again
-            self._next_clock = self.sim.sim_time
+        sim = self.sim
+        if sim.sim_time < self._now:  # /gazebo/reset_simulation: time starts again
+            self._next_clock = sim.sim_time
             for interface in self._all_interfaces():
-                interface.restart(self.sim.sim_time)
-        self.sim.step()
-        now = self._now = self.sim.sim_time
-        for interfaces in self.interfaces.values():
-            for interface in interfaces:
-                interface.publish_due(now)
+                interface.restart(sim.sim_time)
+            self._schedule()
+        sim.step()
+        now = self._now = sim.sim_time
+        if now >= self._next_due - 1e-9:  # as Periodic.publish_due decides
+            stamp = sim_stamp(now)
+            for interfaces in self.interfaces.values():
+                for interface in interfaces:
+                    interface.publish_due(now, stamp)
+            self._schedule()
         if self.api is not None:
             self.api.publish_states(now)
         if now >= self._next_clock - 1e-9:
             self._next_clock = max(self._next_clock + 1.0 / self.settings.pub_clock_frequency, now)
-            self._clock_pub.publish(Clock(sim_stamp(now)))
+            self._clock_pub.publish(self._clock_packer.pack, *stamp_parts(now))
 
     def _on_step_simulation(self, request: StepSimulationRequest) -> StepSimulationResponse:
         """Lockstep: exactly `steps` steps of a paused simulation, each publishing what it makes due."""
@@ -130,7 +147,7 @@ class SimulatorNode:
         """Step until shutdown, paced to the simulation's real-time factor (which /gazebo/set_physics_properties
         may change); while paused, only /gazebo/step_simulation steps."""
         with self.lock:
-            self._clock_pub.publish(Clock(sim_stamp(self._now)))
+            self._clock_pub.publish(self._clock_packer.pack, *stamp_parts(self._now))
             self._next_clock = self._now + 1.0 / self.settings.pub_clock_frequency
         anchor_wall, anchor_sim = time.monotonic(), self._now
         while not rospy.is_shutdown():

@@ -4,16 +4,14 @@ Each publisher keeps its own schedule in sim time; SimulatorNode calls publish_d
 """
 from __future__ import annotations
 
-import copy
 import math
 import random
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import ode
 import rospy
-import tf2_ros
 from gazebo_msgs.msg import ContactState, ContactsState
-from geometry_msgs.msg import Point, Quaternion, TransformStamped, Twist, Vector3, Wrench
+from geometry_msgs.msg import Point, Twist, Vector3, Wrench
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_msgs.msg import Empty as EmptyMsg
@@ -22,6 +20,16 @@ from turtle_sim_ode_msgs.msg import BumperEvent, CliffEvent
 from .model_builder import BuiltModel, quat_from_rpy, quat_multiply
 from .plugins import GroundTruthConfig, JointStatesConfig, find_body
 from .physics import PhysicsWorld
+from .ros_wire import (
+    ImuPacker,
+    JointStatePacker,
+    LaserScanPacker,
+    OdometryPacker,
+    PackedPublisher,
+    Quat,
+    TransformPacker,
+    stamp_parts,
+)
 from .sensors import BumperSensor, CliffSensor, ContactConfig, ImuConfig, ImuSensor, LaserScanner
 from .settings import SimulatorSettings
 from .simulation import DiffDriveRobot, Simulation
@@ -70,12 +78,7 @@ Vec3 = Tuple[float, float, float]
 
 
 def sim_stamp(seconds: float) -> rospy.Time:
-    nanoseconds = int(round(seconds * 1e9))
-    return rospy.Time(nanoseconds // 1000000000, nanoseconds % 1000000000)
-
-
-def yaw_quaternion(yaw: float) -> Quaternion:
-    return Quaternion(0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+    return rospy.Time(*stamp_parts(seconds))
 
 
 def rotate_inverse(q: Sequence[float], v: Sequence[float]) -> Vec3:
@@ -104,13 +107,19 @@ class Periodic:
         self._period = period
         self._next = 0.0
 
+    @property
+    def next_due(self) -> float:
+        """Sim time from which ``publish_due`` publishes (less 1e-9 s of rounding)."""
+        return self._next
+
     def restart(self, now: float) -> None:
         self._next = now
 
-    def publish_due(self, now: float) -> None:
+    def publish_due(self, now: float, stamp: rospy.Time) -> None:
+        """Publish if due at sim time ``now``; ``stamp`` is ``sim_stamp(now)``, made once for all that fall due."""
         if now >= self._next - 1e-9:
             self._next = max(self._next + self._period, now)
-            self.publish(sim_stamp(now), now)
+            self.publish(stamp, now)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         raise NotImplementedError
@@ -128,7 +137,7 @@ class DriveInterface(Periodic):
         name: str,
         robot: DiffDriveRobot,
         settings: SimulatorSettings,
-        tf_broadcaster: tf2_ros.TransformBroadcaster,
+        tf_broadcaster: PackedPublisher,
         sim: Simulation,
         namespace: str,
     ) -> None:
@@ -146,12 +155,16 @@ class DriveInterface(Periodic):
         self._handles: List = [rospy.Subscriber(prefix + config.command_topic, Twist, self._on_velocity, queue_size=1)]
         if config.reset_topic:
             self._handles.append(rospy.Subscriber(prefix + config.reset_topic, EmptyMsg, self._on_reset, queue_size=1))
-        self._odom_pub = rospy.Publisher(prefix + config.odometry_topic, Odometry, queue_size=10)
-        self._joint_pub: Optional[rospy.Publisher] = None
+        self._odom_pub = PackedPublisher(prefix + config.odometry_topic, Odometry)
+        # gazebo_ros_diff_drive's world odometry comes without covariances.
+        covariances = () if self._world_odometry else (ODOM_POSE_COVARIANCE, ODOM_TWIST_COVARIANCE)
+        self._odom_packer = OdometryPacker(self._odom_frame, self._base_frame, *covariances)
+        self._tf_packer = TransformPacker(self._odom_frame, self._base_frame)
+        self._joint_pub: Optional[PackedPublisher] = None
         if config.publish_joint_states:
-            self._joint_pub = rospy.Publisher(prefix + "joint_states", JointState, queue_size=10)
+            self._joint_pub = PackedPublisher(prefix + "joint_states", JointState)
         self._handles += [p for p in (self._odom_pub, self._joint_pub) if p is not None]
-        self._joint_names = [robot.left.name, robot.right.name]
+        self._joint_packer = JointStatePacker([robot.left.name, robot.right.name])
 
     def _on_velocity(self, twist: Twist) -> None:
         if not self.robot.drive.set_command(twist.linear.x, twist.angular.z, self._sim.sim_time):
@@ -164,23 +177,15 @@ class DriveInterface(Periodic):
     def _on_reset(self, _msg: EmptyMsg) -> None:
         self._reset_requested = True  # applied in the simulation thread, between steps
 
-    def _odometry(self, stamp: rospy.Time, now: float) -> Odometry:
-        odom = Odometry()
-        odom.header.stamp = stamp
-        odom.header.frame_id = self._odom_frame
-        odom.child_frame_id = self._base_frame
+    def _odometry(self, now: float) -> Tuple[Vec3, Quat, Vec3, Vec3]:
+        """Pose (position, quaternion xyzw) and body-frame twist (linear, angular) at ``now``; the encoder
+        odometry is integrated (or reset) here, whether anyone listens or not."""
         if self._world_odometry:  # gazebo_ros_diff_drive's odometrySource world: the physics state
             model = self.robot.model
             base = self._base_frame if self._base_frame in model.links else model.root_link
             position, quaternion = model.link_pose(base)
             linear, angular = model.link_twist(base)
-            pose = odom.pose.pose
-            pose.position.x, pose.position.y, pose.position.z = position
-            pose.orientation = Quaternion(*quaternion)
-            twist = odom.twist.twist
-            twist.linear.x, twist.linear.y, twist.linear.z = rotate_inverse(quaternion, linear)
-            twist.angular.x, twist.angular.y, twist.angular.z = rotate_inverse(quaternion, angular)
-            return odom
+            return position, quaternion, rotate_inverse(quaternion, linear), rotate_inverse(quaternion, angular)
         if self._reset_requested:
             self._reset_requested = False
             self.robot.reset_odometry(now)
@@ -188,36 +193,25 @@ class DriveInterface(Periodic):
         else:
             self.robot.update_odometry(now)
         odometry = self.robot.odometry
-        odom.pose.pose.position.x = odometry.x
-        odom.pose.pose.position.y = odometry.y
-        odom.pose.pose.orientation = yaw_quaternion(odometry.yaw)
-        odom.pose.covariance = ODOM_POSE_COVARIANCE
-        odom.twist.twist.linear.x = odometry.linear
-        odom.twist.twist.angular.z = odometry.angular
-        odom.twist.covariance = ODOM_TWIST_COVARIANCE
-        return odom
+        half_yaw = odometry.yaw / 2
+        return (
+            (odometry.x, odometry.y, 0.0),
+            (0.0, 0.0, math.sin(half_yaw), math.cos(half_yaw)),
+            (odometry.linear, 0.0, 0.0),
+            (0.0, 0.0, odometry.angular),
+        )
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        odom = self._odometry(stamp, now)
-        self._odom_pub.publish(odom)
+        position, orientation, linear, angular = self._odometry(now)
+        secs, nsecs = stamp.secs, stamp.nsecs
+        self._odom_pub.publish(self._odom_packer.pack, secs, nsecs, position, orientation, linear, angular)
         if self._tf is not None:
-            transform = TransformStamped()
-            transform.header = odom.header
-            transform.child_frame_id = odom.child_frame_id
-            position = odom.pose.pose.position
-            transform.transform.translation.x = position.x
-            transform.transform.translation.y = position.y
-            transform.transform.translation.z = position.z
-            transform.transform.rotation = odom.pose.pose.orientation
-            self._tf.sendTransform(transform)
-        if self._joint_pub is not None:
-            robot = self.robot
-            joints = JointState()
-            joints.header.stamp = stamp
-            joints.name = self._joint_names
-            joints.position = [robot.left.angle(), robot.right.angle()]
-            joints.velocity = [robot.left.rate(), robot.right.rate()]
-            self._joint_pub.publish(joints)
+            self._tf.publish(self._tf_packer.pack, secs, nsecs, position, orientation)
+        if self._joint_pub is not None and self._joint_pub.get_num_connections():
+            left, right = self.robot.left, self.robot.right
+            self._joint_pub.publish(
+                self._joint_packer.pack, secs, nsecs, (left.angle(), right.angle()), (left.rate(), right.rate())
+            )
 
     def close(self) -> None:
         for handle in self._handles:
@@ -245,13 +239,13 @@ class GroundTruthPublisher(Periodic):
         super().__init__(1.0 / rate)
         self._model = model
         self._link = link
-        self._frame = frame
         self._twist_in_body = twist_in_body
         self._noise = noise
         self._offset = xyz_offset
         w, x, y, z = quat_from_rpy(*rpy_offset)
         self._rotation_offset = (w, x, y, z)
-        self._pub = rospy.Publisher(topic, Odometry, queue_size=10)
+        self._pub = PackedPublisher(topic, Odometry)
+        self._packer = OdometryPacker(frame, link)
 
     @classmethod
     def from_p3d(
@@ -280,21 +274,12 @@ class GroundTruthPublisher(Periodic):
         (px, py, pz), (w, x, y, z) = self._model.link_transform(self._link)
         linear, angular = self._model.link_twist(self._link)
         ow, ox, oy, oz = quat_multiply(self._rotation_offset, (w, x, y, z))
-        truth = Odometry()
-        truth.header.stamp = stamp
-        truth.header.frame_id = self._frame
-        truth.child_frame_id = self._link
-        pose = truth.pose.pose
-        pose.position.x, pose.position.y, pose.position.z = self._noisy(
-            (px + self._offset[0], py + self._offset[1], pz + self._offset[2])
-        )
-        pose.orientation = Quaternion(ox, oy, oz, ow)
+        position = self._noisy((px + self._offset[0], py + self._offset[1], pz + self._offset[2]))
         if self._twist_in_body:
             linear, angular = rotate_inverse((x, y, z, w), linear), rotate_inverse((x, y, z, w), angular)
-        twist = truth.twist.twist
-        twist.linear.x, twist.linear.y, twist.linear.z = self._noisy(linear)
-        twist.angular.x, twist.angular.y, twist.angular.z = self._noisy(angular)
-        self._pub.publish(truth)
+        linear = self._noisy(linear)
+        angular = self._noisy(angular)
+        self._pub.publish(self._packer.pack, stamp.secs, stamp.nsecs, position, (ox, oy, oz, ow), linear, angular)
 
     def close(self) -> None:
         self._pub.unregister()
@@ -306,18 +291,16 @@ class JointStatePublisher(Periodic):
     def __init__(self, model: BuiltModel, config: JointStatesConfig, namespace: str) -> None:
         super().__init__(1.0 / config.update_rate if config.update_rate else 0.0)
         self._handles = [model.joint(name) for name in config.joints]
-        self._names = list(config.joints)
-        self._pub = rospy.Publisher(
-            topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState, queue_size=10
-        )
+        self._packer = JointStatePacker(list(config.joints))
+        self._pub = PackedPublisher(topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        joints = JointState()
-        joints.header.stamp = stamp
-        joints.name = self._names
-        joints.position = [handle.angle() for handle in self._handles]
-        joints.velocity = [handle.rate() for handle in self._handles]
-        self._pub.publish(joints)
+        if not self._pub.get_num_connections():
+            return
+        handles = self._handles
+        positions = [handle.angle() for handle in handles]
+        velocities = [handle.rate() for handle in handles]
+        self._pub.publish(self._packer.pack, stamp.secs, stamp.nsecs, positions, velocities)
 
     def close(self) -> None:
         self._pub.unregister()
@@ -330,10 +313,9 @@ class LaserPublisher(Periodic):
         config = scanner.config
         super().__init__(1.0 / config.update_rate)
         self._scanner = scanner
-        self._pub = rospy.Publisher(
-            plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan, queue_size=1
-        )
-        self._template = LaserScan(
+        self._pub = PackedPublisher(plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan)
+        self._packer = LaserScanPacker(
+            scanner.frame,
             angle_min=config.min_angle,
             angle_max=config.max_angle,
             angle_increment=config.angle_increment,
@@ -341,17 +323,13 @@ class LaserPublisher(Periodic):
             scan_time=1.0 / config.update_rate,
             range_min=config.range_min,
             range_max=config.range_max,
+            beams=config.samples,
         )
-        self._template.header.frame_id = scanner.frame
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         if not self._pub.get_num_connections():
             return
-        scan = copy.copy(self._template)
-        scan.header = copy.copy(self._template.header)
-        scan.header.stamp = stamp
-        scan.ranges = self._scanner.scan()
-        self._pub.publish(scan)
+        self._pub.publish(self._packer.pack, stamp.secs, stamp.nsecs, self._scanner.scan())
 
     def close(self) -> None:
         self._pub.unregister()
@@ -363,8 +341,8 @@ class ImuPublisher(Periodic):
     def __init__(self, sensor: ImuSensor, topic: str, frame: str, rate: float) -> None:
         super().__init__(1.0 / rate if rate > 0 else 0.0)  # rate 0: every step, as gazebo_plugins has it
         self._sensor = sensor
-        self._frame = frame
-        self._pub = rospy.Publisher(topic, Imu, queue_size=10)
+        self._pub = PackedPublisher(topic, Imu)
+        self._packer = ImuPacker(frame)
 
     def restart(self, now: float) -> None:
         super().restart(now)
@@ -372,19 +350,17 @@ class ImuPublisher(Periodic):
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         reading = self._sensor.read(now)  # every time, even unheard: acceleration differences need each reading
-        if not self._pub.get_num_connections():
-            return
-        imu = Imu()
-        imu.header.stamp = stamp
-        imu.header.frame_id = self._frame
-        imu.orientation = Quaternion(*reading.orientation)
-        imu.angular_velocity.x, imu.angular_velocity.y, imu.angular_velocity.z = reading.angular_velocity
-        accel = imu.linear_acceleration
-        accel.x, accel.y, accel.z = reading.linear_acceleration
-        imu.orientation_covariance = reading.orientation_covariance
-        imu.angular_velocity_covariance = reading.angular_velocity_covariance
-        imu.linear_acceleration_covariance = reading.linear_acceleration_covariance
-        self._pub.publish(imu)
+        self._pub.publish(
+            self._packer.pack,
+            stamp.secs,
+            stamp.nsecs,
+            reading.orientation,
+            reading.orientation_covariance,
+            reading.angular_velocity,
+            reading.angular_velocity_covariance,
+            reading.linear_acceleration,
+            reading.linear_acceleration_covariance,
+        )
 
     def close(self) -> None:
         self._pub.unregister()
@@ -510,7 +486,7 @@ def model_interfaces(
     name: str,
     sim: Simulation,
     settings: SimulatorSettings,
-    tf_broadcaster: tf2_ros.TransformBroadcaster,
+    tf_broadcaster: PackedPublisher,
     namespace: str,
 ) -> List[Periodic]:
     """Every ROS publisher and subscriber the plugins of model `name` ask for (call under the world lock)."""

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass, field
-from typing import Iterator, List, Mapping, Optional, Sequence, Set, Tuple
+from typing import Callable, Iterator, List, Mapping, Optional, Sequence, Set, Tuple
 from xml.etree.ElementTree import Element, ParseError
 
 import defusedxml
@@ -312,8 +312,12 @@ def read_sensors(urdf: str) -> SensorBlocks:
 
 
 # --- ray casting ----------------------------------------------------------------------
-def _world_geoms(physics: PhysicsWorld, model: BuiltModel) -> Iterator[ode.GeomObject]:
-    """Every collision geom in the world's spaces but ``model``'s own (the ground plane is apart)."""
+def _world_geoms(
+    physics: PhysicsWorld, model: BuiltModel, in_reach: Callable[[ode.SpaceBase], bool] = lambda space: True
+) -> Iterator[ode.GeomObject]:
+    """Every collision geom in the world's spaces but ``model``'s own (the ground plane is apart), less those of
+    the sub-spaces (other models, static obstacles) for which ``in_reach`` is false: a sensor that knows how far it
+    reaches then tests a few space AABBs instead of every geom in the world."""
     own: Set[ode.GeomObject] = {geom for geoms in model.geoms.values() for geom in geoms}
     own_space = None
     if not model.robot.static:
@@ -324,7 +328,7 @@ def _world_geoms(physics: PhysicsWorld, model: BuiltModel) -> Iterator[ode.GeomO
         for index in range(space.getNumGeoms()):
             geom = space.getGeom(index)
             if geom.isSpace():
-                if geom is not own_space:
+                if geom is not own_space and in_reach(geom):
                     stack.append(geom)
             elif geom not in own:
                 yield geom
@@ -400,6 +404,7 @@ class LaserScanner:
         cosines, sines, rays = self._cos, self._sin, self._rays
         distances = [math.inf] * n
         placed = [False] * n
+        cast_beams: List[int] = []
 
         collide = ode.collide
 
@@ -410,6 +415,7 @@ class LaserScanner:
                     c, s = cosines[i], sines[i]
                     ray.set(origin, (c * r00 + s * r01, c * r10 + s * r11, c * r20 + s * r21))
                     placed[i] = True
+                    cast_beams.append(i)
                 for contact in collide(ray, geom):
                     depth = contact.getContactGeomParams()[2]
                     if depth < distances[i]:
@@ -421,7 +427,24 @@ class LaserScanner:
         level = tilt < _LEVEL
         rise = range_max * tilt + 1e-6  # how far the scan plane leaves z = oz within range
         yaw = math.atan2(r10, r00)
-        for geom in _world_geoms(self.physics, self.model):
+
+        def in_reach(space: ode.SpaceBase) -> bool:
+            """Whether a beam may reach a geom of ``space``, whose AABB holds all of theirs."""
+            x0, x1, y0, y1, z0, z1 = space.getAABB()
+            if level:  # the geoms' own tests below, which no geom passes if the space fails them
+                dx = max(x0 - ox, 0.0, ox - x1)
+                dy = max(y0 - oy, 0.0, oy - y1)
+                return z0 - rise <= oz <= z1 + rise and dx * dx + dy * dy <= range_max * range_max
+            cx, cy, cz = (x0 + x1) / 2 - ox, (y0 + y1) / 2 - oy, (z0 + z1) / 2 - oz
+            pz = r02 * cx + r12 * cy + r22 * cz
+            in_plane2 = ((x1 - x0) ** 2 + (y1 - y0) ** 2 + (z1 - z0) ** 2) / 4 - pz * pz
+            if in_plane2 < 0:
+                return False  # the scan plane misses the AABB's bounding sphere
+            # Hits lie in the scan plane within range_max of the sensor: so must a point of the sphere's cut.
+            reach = range_max + math.sqrt(in_plane2) + 1e-6
+            return cx * cx + cy * cy + cz * cz - pz * pz <= reach * reach
+
+        for geom in _world_geoms(self.physics, self.model, in_reach):
             x0, x1, y0, y1, z0, z1 = geom.getAABB()
             if level:
                 # The AABB's footprint seen from the sensor: tight for long walls.
@@ -465,17 +488,15 @@ class LaserScanner:
         if 0 < oz <= range_max * math.hypot(r20, r21):
             down = [i for i in all_beams if cosines[i] * r20 + sines[i] * r21 < -oz / range_max]
             cast(down, self.physics.ground)
-        return self._ranges(distances, placed)
+        return self._ranges(distances, cast_beams)
 
-    def _ranges(self, distances: List[float], placed: List[bool]) -> List[float]:
+    def _ranges(self, distances: List[float], cast_beams: List[int]) -> List[float]:
         """REP 117 and noise on the beams that were cast (the others hit nothing: +inf)."""
         config = self.config
         low, high = config.range_min, config.range_max
         stddev, mean, gauss = config.noise_stddev, config.noise_mean, self.rng.gauss
         noisy = stddev > 0 or mean != 0
-        for i, cast in enumerate(placed):
-            if not cast:
-                continue
+        for i in sorted(cast_beams):  # in beam order: the noise drawn for each beam stays the same
             d = distances[i]
             if d > high:
                 distances[i] = math.inf

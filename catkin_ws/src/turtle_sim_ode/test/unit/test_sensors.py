@@ -12,6 +12,7 @@ from typing import List, Tuple
 import pytest
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF, TurtleSim
 
+from turtle_sim_ode import sensors
 from turtle_sim_ode.sensors import (
     CENTER,
     CLIFF,
@@ -169,6 +170,31 @@ def test_own_body_is_not_seen_but_another_robot_is() -> None:
     back = LaserScanner(sim.physics, other, "base_scan", low).scan()
     assert back[beam(low, math.pi)] == pytest.approx(other_x - 0.178 - x, abs=0.01)
     assert back[beam(low, 0.0)] == math.inf
+
+
+def test_models_out_of_reach_are_skipped_whole(monkeypatch: pytest.MonkeyPatch) -> None:
+    sim = TurtleSim()
+    sim.sim.spawn_urdf("near", LASER_URDF, (1.0, 0.0, 0.0, 0.0, 0.0, 0.0))
+    sim.sim.spawn_urdf("far", LASER_URDF, (9.0, 0.0, 0.0, 0.0, 0.0, 0.0))
+    sim.settle()
+    near = {geom for geoms in sim.sim.models["near"].geoms.values() for geom in geoms}
+    far = {geom for geoms in sim.sim.models["far"].geoms.values() for geom in geoms}
+    tested: List[object] = []
+    world_geoms = sensors._world_geoms
+
+    def recording(*args):  # type: ignore[no-untyped-def]
+        for geom in world_geoms(*args):
+            tested.append(geom)
+            yield geom
+
+    monkeypatch.setattr(sensors, "_world_geoms", recording)
+    # Level (AABB footprint culling) and tilted (bounding spheres): the near robot is seen, the far one never tested.
+    for pitch in (0.0, 0.02):
+        config = laser_config(pose=(0.0, 0.0, 0.05 - SCAN_HEIGHT, 0.0, pitch, 0.0))
+        tested.clear()
+        assert math.isfinite(LaserScanner(sim.physics, sim.model, "base_scan", config).scan()[beam(config, 0.0)])
+        assert near <= set(tested)
+        assert not far & set(tested)
 
 
 def test_noise_has_the_configured_stddev() -> None:

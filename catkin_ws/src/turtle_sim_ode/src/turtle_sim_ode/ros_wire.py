@@ -1,0 +1,198 @@
+"""The messages the simulator publishes at step rates, packed straight into ROS 1's wire format and written
+synchronously.
+
+Why (issue #8, measured on the 2-core dev machine): a genpy Odometry costs ~10 us to build and ~15 us to serialise,
+and a rospy publisher with a queue (queue_size=N) hands every message to a writer thread with time.sleep(0), a
+thread switch of 100-150 us. With one TurtleBot that was ~360 messages and ~50 ms of wall time per simulated second.
+One struct.pack of the whole message, published synchronously as rospy.AnyMsg, costs ~12 us, most of it the socket
+write. The bytes are those genpy would write (test_ros_wire.py compares them).
+
+The price of synchronous publishing: a subscriber process that stops reading altogether (stopped, not merely slow:
+rospy and roscpp read their sockets in threads of their own) blocks the simulator once the kernel's socket buffers
+(megabytes) are full, as a lockstep partner would.
+"""
+from __future__ import annotations
+
+import struct
+import warnings
+from typing import Any, Callable, Sequence, Tuple
+
+import rospy
+
+Vec3 = Tuple[float, float, float]
+Quat = Tuple[float, float, float, float]  # x, y, z, w as in geometry_msgs
+
+_HEADER = "3I%ds"  # seq, stamp secs, stamp nsecs, then frame_id as a length-prefixed string
+
+
+def _string(text: str) -> bytes:
+    data = text.encode("utf-8")
+    return struct.pack("<I", len(data)) + data
+
+
+def _float64s(values: Sequence[float]) -> bytes:
+    """A fixed-size float64[N] (covariances): no length prefix."""
+    return struct.pack("<%dd" % len(values), *values)
+
+
+def stamp_parts(seconds: float) -> Tuple[int, int]:
+    """(secs, nsecs) of a sim time, rounded to the nanosecond as ros_plugins.sim_stamp does."""
+    nanoseconds = int(round(seconds * 1e9))
+    return nanoseconds // 1000000000, nanoseconds % 1000000000
+
+
+class PackedPublisher:
+    """A rospy publisher of packed messages (bytes in the wire format of ``data_class``), written synchronously
+    (see the module's docstring)."""
+
+    def __init__(self, topic: str, data_class: type) -> None:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", SyntaxWarning)  # rospy warns of queue_size=None, meant here
+            self._pub = rospy.Publisher(topic, data_class, queue_size=None)
+
+    def get_num_connections(self) -> int:
+        return self._pub.get_num_connections()
+
+    def publish(self, pack: Callable[..., bytes], *fields: Any) -> None:
+        """Publish the message ``pack(seq, *fields)`` if anyone listens (nothing is packed otherwise); seq is the
+        header seq rospy gives the topic's next message, as it would to a genpy message."""
+        impl = self._pub.impl
+        if impl is None or not impl.has_connections():
+            return
+        message = rospy.AnyMsg()
+        message._buff = pack(impl.seq + 1, *fields)
+        self._pub.publish(message)
+
+    def unregister(self) -> None:
+        self._pub.unregister()
+
+
+class ClockPacker:
+    """rosgraph_msgs/Clock (no header: the seq is ignored)."""
+
+    _struct = struct.Struct("<2I")
+
+    def pack(self, _seq: int, secs: int, nsecs: int) -> bytes:
+        return self._struct.pack(secs, nsecs)
+
+
+class OdometryPacker:
+    """nav_msgs/Odometry with fixed frames and covariances."""
+
+    def __init__(
+        self,
+        frame_id: str,
+        child_frame_id: str,
+        pose_covariance: Sequence[float] = (0.0,) * 36,
+        twist_covariance: Sequence[float] = (0.0,) * 36,
+    ) -> None:
+        frames = _string(frame_id) + _string(child_frame_id)
+        self._frames = frames
+        self._pose_covariance = _float64s(pose_covariance)
+        self._twist_covariance = _float64s(twist_covariance)
+        self._struct = struct.Struct("<" + _HEADER % len(frames) + "7d288s6d288s")
+
+    def pack(
+        self, seq: int, secs: int, nsecs: int, position: Vec3, orientation: Quat, linear: Vec3, angular: Vec3
+    ) -> bytes:
+        return self._struct.pack(
+            seq,
+            secs,
+            nsecs,
+            self._frames,
+            *position,
+            *orientation,
+            self._pose_covariance,
+            *linear,
+            *angular,
+            self._twist_covariance,
+        )
+
+
+class TransformPacker:
+    """tf2_msgs/TFMessage holding one geometry_msgs/TransformStamped between fixed frames."""
+
+    def __init__(self, frame_id: str, child_frame_id: str) -> None:
+        frames = _string(frame_id) + _string(child_frame_id)
+        self._frames = frames
+        # The transforms array's length (1) comes first.
+        self._struct = struct.Struct("<I" + _HEADER % len(frames) + "7d")
+
+    def pack(self, seq: int, secs: int, nsecs: int, translation: Vec3, rotation: Quat) -> bytes:
+        return self._struct.pack(1, seq, secs, nsecs, self._frames, *translation, *rotation)
+
+
+class JointStatePacker:
+    """sensor_msgs/JointState of fixed joint names: positions and velocities, no efforts, empty frame_id."""
+
+    def __init__(self, names: Sequence[str]) -> None:
+        count = len(names)
+        fixed = _string("") + struct.pack("<I", count) + b"".join(_string(name) for name in names)
+        self._fixed = fixed
+        self._count = count
+        self._struct = struct.Struct("<" + _HEADER % len(fixed) + "I%ddI%ddI" % (count, count))
+
+    def pack(self, seq: int, secs: int, nsecs: int, positions: Sequence[float], velocities: Sequence[float]) -> bytes:
+        count = self._count
+        return self._struct.pack(seq, secs, nsecs, self._fixed, count, *positions, count, *velocities, 0)
+
+
+class ImuPacker:
+    """sensor_msgs/Imu in a fixed frame."""
+
+    def __init__(self, frame_id: str) -> None:
+        frame = _string(frame_id)
+        self._frame = frame
+        self._struct = struct.Struct("<" + _HEADER % len(frame) + "4d9d3d9d3d9d")
+
+    def pack(
+        self,
+        seq: int,
+        secs: int,
+        nsecs: int,
+        orientation: Quat,
+        orientation_covariance: Sequence[float],
+        angular_velocity: Vec3,
+        angular_velocity_covariance: Sequence[float],
+        linear_acceleration: Vec3,
+        linear_acceleration_covariance: Sequence[float],
+    ) -> bytes:
+        return self._struct.pack(
+            seq,
+            secs,
+            nsecs,
+            self._frame,
+            *orientation,
+            *orientation_covariance,
+            *angular_velocity,
+            *angular_velocity_covariance,
+            *linear_acceleration,
+            *linear_acceleration_covariance,
+        )
+
+
+class LaserScanPacker:
+    """sensor_msgs/LaserScan of a fixed frame, geometry and beam count; no intensities."""
+
+    def __init__(
+        self,
+        frame_id: str,
+        angle_min: float,
+        angle_max: float,
+        angle_increment: float,
+        time_increment: float,
+        scan_time: float,
+        range_min: float,
+        range_max: float,
+        beams: int,
+    ) -> None:
+        fixed = _string(frame_id)
+        self._frame = fixed
+        self._geometry = struct.pack(
+            "<7f", angle_min, angle_max, angle_increment, time_increment, scan_time, range_min, range_max
+        )
+        self._beams = beams
+        self._struct = struct.Struct("<" + _HEADER % len(fixed) + "28sI%dfI" % beams)
+
+    def pack(self, seq: int, secs: int, nsecs: int, ranges: Sequence[float]) -> bytes:
+        return self._struct.pack(seq, secs, nsecs, self._frame, self._geometry, self._beams, *ranges, 0)

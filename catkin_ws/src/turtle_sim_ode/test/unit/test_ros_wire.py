@@ -1,0 +1,114 @@
+"""The packed messages are byte for byte what genpy serialises for the same field values."""
+import io
+import math
+import random
+
+import genpy
+import pytest
+from geometry_msgs.msg import Quaternion, TransformStamped
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import Imu, JointState, LaserScan
+from tf2_msgs.msg import TFMessage
+
+from turtle_sim_ode import ros_wire
+
+RNG = random.Random(8)
+SEQ, SECS, NSECS = 42, 3, 999999999
+
+
+def genpy_bytes(message):
+    buffer = io.BytesIO()
+    message.serialize(buffer)
+    return buffer.getvalue()
+
+
+def numbers(count):
+    return tuple(RNG.uniform(-1e3, 1e3) for _ in range(count))
+
+
+def with_header(message, frame_id):
+    message.header.seq = SEQ
+    message.header.stamp = genpy.Time(SECS, NSECS)
+    message.header.frame_id = frame_id
+    return message
+
+
+def test_stamp_parts_round_to_the_nanosecond():
+    assert ros_wire.stamp_parts(0.0) == (0, 0)
+    assert ros_wire.stamp_parts(1.999999999) == (1, 999999999)
+    assert ros_wire.stamp_parts(0.1 + 0.2) == (0, 300000000)
+    assert ros_wire.stamp_parts(12345.0000000004) == (12345, 0)
+
+
+def test_clock():
+    assert ros_wire.ClockPacker().pack(SEQ, 7, 123) == genpy_bytes(Clock(genpy.Time(7, 123)))
+
+
+@pytest.mark.parametrize("covariances", [True, False])
+@pytest.mark.parametrize("frame_id, child_frame_id", [("odom", "base_footprint"), ("wörld", "")])
+def test_odometry(covariances, frame_id, child_frame_id):
+    pose_covariance, twist_covariance = (numbers(36), numbers(36)) if covariances else ((0.0,) * 36, (0.0,) * 36)
+    position, orientation, linear, angular = numbers(3), numbers(4), numbers(3), numbers(3)
+    odom = with_header(Odometry(), frame_id)
+    odom.child_frame_id = child_frame_id
+    pose = odom.pose.pose
+    pose.position.x, pose.position.y, pose.position.z = position
+    pose.orientation = Quaternion(*orientation)
+    odom.pose.covariance = list(pose_covariance)
+    twist = odom.twist.twist
+    twist.linear.x, twist.linear.y, twist.linear.z = linear
+    twist.angular.x, twist.angular.y, twist.angular.z = angular
+    odom.twist.covariance = list(twist_covariance)
+    if covariances:
+        packer = ros_wire.OdometryPacker(frame_id, child_frame_id, pose_covariance, twist_covariance)
+    else:
+        packer = ros_wire.OdometryPacker(frame_id, child_frame_id)
+    assert packer.pack(SEQ, SECS, NSECS, position, orientation, linear, angular) == genpy_bytes(odom)
+
+
+def test_transform():
+    translation, rotation = numbers(3), numbers(4)
+    transform = with_header(TransformStamped(), "odom")
+    transform.child_frame_id = "base_footprint"
+    (
+        transform.transform.translation.x,
+        transform.transform.translation.y,
+        transform.transform.translation.z,
+    ) = translation
+    transform.transform.rotation = Quaternion(*rotation)
+    packed = ros_wire.TransformPacker("odom", "base_footprint").pack(SEQ, SECS, NSECS, translation, rotation)
+    assert packed == genpy_bytes(TFMessage([transform]))
+
+
+@pytest.mark.parametrize("names", [["wheel_left_joint", "wheel_right_joint"], ["only"], []])
+def test_joint_state(names):
+    positions, velocities = numbers(len(names)), numbers(len(names))
+    joints = with_header(JointState(), "")
+    joints.name, joints.position, joints.velocity = names, list(positions), list(velocities)
+    packed = ros_wire.JointStatePacker(names).pack(SEQ, SECS, NSECS, positions, velocities)
+    assert packed == genpy_bytes(joints)
+
+
+def test_imu():
+    values = numbers(4), numbers(9), numbers(3), numbers(9), numbers(3), numbers(9)
+    imu = with_header(Imu(), "imu_link")
+    imu.orientation = Quaternion(*values[0])
+    imu.orientation_covariance = list(values[1])
+    imu.angular_velocity.x, imu.angular_velocity.y, imu.angular_velocity.z = values[2]
+    imu.angular_velocity_covariance = list(values[3])
+    imu.linear_acceleration.x, imu.linear_acceleration.y, imu.linear_acceleration.z = values[4]
+    imu.linear_acceleration_covariance = list(values[5])
+    assert ros_wire.ImuPacker("imu_link").pack(SEQ, SECS, NSECS, *values) == genpy_bytes(imu)
+
+
+@pytest.mark.parametrize("beams", [360, 1])
+def test_laser_scan(beams):
+    geometry = numbers(7)
+    ranges = [RNG.uniform(0.1, 3.5) for _ in range(beams)]
+    ranges[0] = math.inf
+    if beams > 2:
+        ranges[1] = -math.inf
+    scan = with_header(LaserScan(None, *geometry, ranges, []), "base_scan")
+    packed = ros_wire.LaserScanPacker("base_scan", *geometry, beams).pack(SEQ, SECS, NSECS, ranges)
+    assert packed == genpy_bytes(scan)
