@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import os
+import signal
 import threading
 import time
 from typing import Dict, List, Optional
@@ -39,6 +40,8 @@ class SimulatorNode:
         # Service calls and topic callbacks run in rospy's threads; the world changes only under this lock.
         self.lock = threading.Lock()
         self._unpaused = threading.Event()
+        # Set by SIGINT/SIGTERM (see main): the loop ends between steps.
+        self.stop_requested = threading.Event()
         if not settings.paused:
             self._unpaused.set()
         # Published at step rates: packed and written synchronously (see ros_wire). No tf2_ros broadcaster: rospy
@@ -150,7 +153,7 @@ class SimulatorNode:
             self._clock_pub.publish(self._clock_packer.pack, *stamp_parts(self._now))
             self._next_clock = self._now + 1.0 / self.settings.pub_clock_frequency
         anchor_wall, anchor_sim = time.monotonic(), self._now
-        while not rospy.is_shutdown():
+        while not rospy.is_shutdown() and not self.stop_requested.is_set():
             if not self._unpaused.is_set():
                 self._unpaused.wait(0.1)
                 anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
@@ -205,7 +208,9 @@ def load_world(node: SimulatorNode, world_name: str) -> None:
 
 
 def main() -> int:
-    rospy.init_node("gazebo")
+    # rospy's own SIGINT handler shuts rospy down inside whatever the main thread is doing; in the middle of a
+    # publish it can deadlock on the publisher's lock (seen flat out). Here a signal only asks the loop to stop.
+    rospy.init_node("gazebo", disable_signals=True)
     try:
         settings = settings_from_params(rospy.get_param("~", {}))
     except SettingsError as error:
@@ -232,10 +237,13 @@ def main() -> int:
             rospy.logfatal("cannot spawn model [%s]: %s" % (settings.spawn_model_name, error))
             return 1
     node.advertise()
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, lambda *_: node.stop_requested.set())
     try:
         node.run()
     except rospy.ROSInterruptException:
         pass
     finally:
         node.close()
+        rospy.signal_shutdown("simulator stopped")
     return 0

@@ -28,6 +28,7 @@ from .ros_wire import (
     PackedPublisher,
     Quat,
     TransformPacker,
+    release,
     stamp_parts,
 )
 from .sensors import BumperSensor, CliffSensor, ContactConfig, ImuConfig, ImuSensor, LaserScanner
@@ -167,11 +168,17 @@ class DriveInterface(Periodic):
         self._joint_packer = JointStatePacker([robot.left.name, robot.right.name])
 
     def _on_velocity(self, twist: Twist) -> None:
-        if not self.robot.drive.set_command(twist.linear.x, twist.angular.z, self._sim.sim_time):
+        linear, angular = twist.linear.x, twist.angular.z
+        if not self.robot.drive.set_command(linear, angular, self._sim.sim_time):
             rospy.logwarn_throttle(
                 5.0,
-                "%s: velocity command ignored, not finite: linear.x [%s] angular.z [%s]"
-                % (self.name, twist.linear.x, twist.angular.z),
+                "%s: velocity command ignored, not finite: linear.x [%s] angular.z [%s]" % (self.name, linear, angular),
+            )
+        elif abs(linear) > self.robot.params.max_linear or abs(angular) > self.robot.params.max_angular:
+            rospy.logwarn_throttle(
+                5.0,
+                "%s: velocity command clamped: linear.x [%s] angular.z [%s] to max_linear [%s] max_angular [%s]"
+                % (self.name, linear, angular, self.robot.params.max_linear, self.robot.params.max_angular),
             )
 
     def _on_reset(self, _msg: EmptyMsg) -> None:
@@ -215,7 +222,7 @@ class DriveInterface(Periodic):
 
     def close(self) -> None:
         for handle in self._handles:
-            handle.unregister()
+            release(handle)
 
 
 class GroundTruthPublisher(Periodic):
@@ -282,7 +289,7 @@ class GroundTruthPublisher(Periodic):
         self._pub.publish(self._packer.pack, stamp.secs, stamp.nsecs, position, (ox, oy, oz, ow), linear, angular)
 
     def close(self) -> None:
-        self._pub.unregister()
+        release(self._pub)
 
 
 class JointStatePublisher(Periodic):
@@ -303,7 +310,7 @@ class JointStatePublisher(Periodic):
         self._pub.publish(self._packer.pack, stamp.secs, stamp.nsecs, positions, velocities)
 
     def close(self) -> None:
-        self._pub.unregister()
+        release(self._pub)
 
 
 class LaserPublisher(Periodic):
@@ -332,7 +339,7 @@ class LaserPublisher(Periodic):
         self._pub.publish(self._packer.pack, stamp.secs, stamp.nsecs, self._scanner.scan())
 
     def close(self) -> None:
-        self._pub.unregister()
+        release(self._pub)
 
 
 class ImuPublisher(Periodic):
@@ -363,7 +370,7 @@ class ImuPublisher(Periodic):
         )
 
     def close(self) -> None:
-        self._pub.unregister()
+        release(self._pub)
 
 
 class BumperEventPublisher(Periodic):
@@ -380,7 +387,7 @@ class BumperEventPublisher(Periodic):
 
     def close(self) -> None:
         self._sensor.close()
-        self._pub.unregister()
+        release(self._pub)
 
 
 class CliffEventPublisher(Periodic):
@@ -398,7 +405,7 @@ class CliffEventPublisher(Periodic):
             self._pub.publish(CliffEvent(sensor=sensor, state=state, bottom=bottom))
 
     def close(self) -> None:
-        self._pub.unregister()
+        release(self._pub)
 
 
 class ContactsPublisher(Periodic):
@@ -453,7 +460,7 @@ class ContactsPublisher(Periodic):
 
     def close(self) -> None:
         self._physics.unwatch_contacts(self._watch)
-        self._pub.unregister()
+        release(self._pub)
 
 
 def _imu_publisher(model: BuiltModel, config: ImuConfig, gravity: Vec3, namespace: str) -> Optional[Periodic]:

@@ -64,7 +64,21 @@ class PackedPublisher:
         self._pub.publish(message)
 
     def unregister(self) -> None:
-        self._pub.unregister()
+        release(self._pub)
+
+
+def release(handle: Any) -> None:
+    """Unregister a rospy Publisher or Subscriber (or a PackedPublisher). When it was its topic's last user, also
+    close the topic's epoll fd: rospy leaves that to the garbage collector (a reference cycle), and a simulator that
+    spawns and deletes models would otherwise pile up fds between collections (ros/ros_comm#2373)."""
+    if isinstance(handle, PackedPublisher):
+        handle.unregister()
+        return
+    impl = handle.impl
+    handle.unregister()
+    poller = getattr(getattr(impl, "connection_poll", None), "poller", None)
+    if impl is not None and impl.closed and hasattr(poller, "close"):
+        poller.close()
 
 
 class ClockPacker:

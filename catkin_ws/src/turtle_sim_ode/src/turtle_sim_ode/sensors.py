@@ -703,7 +703,19 @@ class CliffSensor:
             ray.set(start, down)
         distances = [_ray_distance(ray, self.physics.ground) for ray in self._rays]
         reach = self.max_range
-        for geom in _world_geoms(self.physics, self.model):
+        # The box around all rays: the starts' box stretched by the (common) ray vector.
+        xs, ys, zs = zip(*starts)
+        dx, dy, dz = down[0] * reach, down[1] * reach, down[2] * reach
+        bx0, bx1 = min(xs) + min(dx, 0.0), max(xs) + max(dx, 0.0)
+        by0, by1 = min(ys) + min(dy, 0.0), max(ys) + max(dy, 0.0)
+        bz0, bz1 = min(zs) + min(dz, 0.0), max(zs) + max(dz, 0.0)
+
+        def in_reach(space: ode.SpaceBase) -> bool:
+            """Whether that box meets the space's AABB (which holds its geoms' AABBs)."""
+            x0, x1, y0, y1, z0, z1 = space.getAABB()
+            return bx0 <= x1 and x0 <= bx1 and by0 <= y1 and y0 <= by1 and bz0 <= z1 and z0 <= bz1
+
+        for geom in _world_geoms(self.physics, self.model, in_reach):
             x0, x1, y0, y1, z0, z1 = geom.getAABB()
             for i, (sx, sy, sz) in enumerate(starts):
                 ex, ey, ez = sx + down[0] * reach, sy + down[1] * reach, sz + down[2] * reach
