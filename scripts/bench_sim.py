@@ -17,7 +17,6 @@ import argparse
 import contextlib
 import datetime
 import fcntl
-import itertools
 import json
 import math
 import multiprocessing
@@ -25,7 +24,6 @@ import os
 import platform
 import shutil
 import signal
-import socket
 import statistics
 import subprocess
 import sys
@@ -36,6 +34,9 @@ import traceback
 import xmlrpc.client
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from ros_processes import SHUTDOWN_TIMEOUT_S, Processes, cpu_seconds, free_port  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PACKAGE = os.path.join(REPO, "catkin_ws", "src", "turtle_sim_ode")
@@ -54,8 +55,6 @@ SETTLE_STEPS = 500
 ROBOT_SPACING_M = 3.0  # between spawn points: 1 m circles never meet
 ROBOTS_PER_ROW = 5
 STARTUP_TIMEOUT_S = 60.0
-SHUTDOWN_TIMEOUT_S = 5.0
-TAG_VARIABLE = "BENCH_SIM_TAG"  # in the environment of every process the benchmark starts
 
 
 @dataclass(frozen=True)
@@ -281,79 +280,6 @@ def physics_only(plan: Plan) -> Dict[str, Any]:
 
 
 # --- process groups and masters -----------------------------------------------------------------------------------
-def tagged_pids(tag: str) -> List[int]:
-    """Processes whose environment has TAG_VARIABLE=tag."""
-    needle = ("\0%s=%s\0" % (TAG_VARIABLE, tag)).encode()
-    pids = []
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            with contextlib.suppress(OSError), open("/proc/%s/environ" % entry, "rb") as environ:
-                if needle in b"\0" + environ.read():
-                    pids.append(int(entry))
-    return pids
-
-
-class Processes:
-    """Every process the benchmark starts, each as a process group whose processes carry a tag of their own in their
-    environment: roslaunch starts each node in a session of its own, so the tag finds what killing the group misses.
-    All are stopped when the context closes."""
-
-    def __init__(self, log_dir: str) -> None:
-        self.log_dir = log_dir
-        self._running: Dict[subprocess.Popen, str] = {}  # -> tag
-        self._tags = itertools.count()
-
-    def __enter__(self) -> "Processes":
-        return self
-
-    def __exit__(self, *_: object) -> None:
-        self.stop(list(self._running))
-
-    def start(self, command: List[str], env: Dict[str, str], log_name: str) -> subprocess.Popen:
-        """Start ``command`` as a new process group, output to ``log_name`` in the log directory."""
-        tag = "%d-%d" % (os.getpid(), next(self._tags))
-        with open(os.path.join(self.log_dir, log_name), "ab") as log:
-            process = subprocess.Popen(
-                command,
-                env=dict(env, **{TAG_VARIABLE: tag}),
-                stdin=subprocess.DEVNULL,
-                stdout=log,
-                stderr=subprocess.STDOUT,
-                start_new_session=True,
-            )
-        self._running[process] = tag
-        return process
-
-    def stop(self, processes: List[subprocess.Popen]) -> None:
-        """SIGINT to each group (roslaunch stops its nodes), then SIGKILL to whatever is left of the groups and to
-        every process with their tags."""
-        processes = [process for process in processes if process in self._running]
-        for process in processes:
-            with contextlib.suppress(ProcessLookupError):
-                os.killpg(process.pid, signal.SIGINT)
-        deadline = time.monotonic() + SHUTDOWN_TIMEOUT_S
-        for process in processes:
-            with contextlib.suppress(subprocess.TimeoutExpired):
-                process.wait(max(0.0, deadline - time.monotonic()))
-            with contextlib.suppress(ProcessLookupError):
-                os.killpg(process.pid, signal.SIGKILL)
-            for pid in tagged_pids(self._running.pop(process)):
-                with contextlib.suppress(ProcessLookupError):
-                    os.kill(pid, signal.SIGKILL)
-            process.wait()
-
-    def log_tail(self, log_name: str, lines: int = 15) -> str:
-        with open(os.path.join(self.log_dir, log_name), errors="replace") as log:
-            return "".join(log.readlines()[-lines:])
-
-
-def free_port() -> int:
-    """A TCP port free on loopback (as scripts/lib/free_port.py)."""
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return probe.getsockname()[1]
-
-
 class Master:
     """A roscore of our own on a free port; ``ros_env`` points ROS processes at it, ``close`` stops it and what was
     launched on it."""
@@ -390,7 +316,8 @@ class Master:
         return self._start(["roslaunch", "turtle_sim_ode", launch_file] + list(arguments), "launch")
 
     def close(self) -> None:
-        self.processes.stop(self.started)
+        for process in reversed(self.started):
+            self.processes.stop(process)
 
     def failure(self, launch: subprocess.Popen, error: BenchError) -> BenchError:
         """``error`` with the launch's exit status and the tail of its log."""
@@ -494,13 +421,6 @@ def node_pid(name: str) -> int:
     if code != 1:
         raise BenchError("%s did not tell its pid: %s" % (name, message))
     return pid
-
-
-def cpu_seconds(pid: int) -> float:
-    """User + system CPU time of process ``pid``, all its threads."""
-    with open("/proc/%d/stat" % pid) as stat:
-        fields = stat.read().rsplit(")", 1)[1].split()  # from the state on: utime and stime are the 12th and 13th
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def measure_rtf_task(send: Callable[[Any], None], robots: int, warmup_s: float, window_s: float) -> None:

@@ -33,14 +33,12 @@ import collections
 import contextlib
 import datetime
 import importlib
-import itertools
 import json
 import math
 import os
 import platform
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -49,6 +47,9 @@ import time
 import traceback
 import xmlrpc.client
 from typing import Any, Deque, Dict, List, Optional, Sequence, Tuple
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from ros_processes import SHUTDOWN_TIMEOUT_S, Processes, cpu_seconds, free_port  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PACKAGE = os.path.join(REPO, "catkin_ws", "src", "turtle_sim_ode")
@@ -60,7 +61,6 @@ COMMAND_PERIOD_S = 0.1  # 10 Hz wall
 CIRCLE = (0.25, 0.5)  # v (m/s), w (rad/s): a circle of 0.5 m radius
 REVERSE_PERIOD_S = 15.0  # wall seconds between reversals (the robot then goes back round the same circle)
 STARTUP_TIMEOUT_S = 90.0
-SHUTDOWN_TIMEOUT_S = 5.0
 CALL_TIMEOUT_S = 30.0  # a service call taking longer counts as a hung simulator
 STEADY_READS = 5  # threads and fds: the least of this many reads 50 ms apart (a service connection's thread and
 STEADY_READ_GAP_S = 0.05  # socket live only as long as the call, and a sample must not catch one in passing)
@@ -69,7 +69,6 @@ STEADY_READ_GAP_S = 0.05  # socket live only as long as the call, and a sample m
 # 17 KiB per spawn and delete (a whole model kept) or of 35 bytes per physics step at 1000 steps/s.
 DEFAULT_MAX_RSS_GROWTH_MIB_PER_MIN = 2.0
 DEFAULT_MAX_COUNT_GROWTH = 5
-TAG_VARIABLE = "SOAK_TAG"  # in the environment of every process the soak starts
 SPAWN_GRID = (6, 4)  # boxes are spawned on a grid of this many slots, from x = 4 m: away from the robot's circle
 MIB = 1024.0 * 1024.0
 
@@ -79,89 +78,6 @@ class SoakError(RuntimeError):
 
 
 # --- process groups and the master ----------------------------------------------------------------------------------
-def tagged_pids(tag: str) -> List[int]:
-    """Processes whose environment has TAG_VARIABLE=tag."""
-    needle = ("\0%s=%s\0" % (TAG_VARIABLE, tag)).encode()
-    pids = []
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            with contextlib.suppress(OSError), open("/proc/%s/environ" % entry, "rb") as environ:
-                if needle in b"\0" + environ.read():
-                    pids.append(int(entry))
-    return pids
-
-
-class Processes:
-    """Every process the soak starts, each as a process group whose processes carry a tag of their own in their
-    environment: roslaunch starts each node in a session of its own, so the tag finds what killing the group misses.
-    All are stopped, last started first, when the context closes."""
-
-    def __init__(self, log_dir: str) -> None:
-        self.log_dir = log_dir
-        self._running: Dict[subprocess.Popen, str] = {}  # -> tag
-        self._order: List[subprocess.Popen] = []
-        self._tags = itertools.count()
-
-    def __enter__(self) -> "Processes":
-        return self
-
-    def __exit__(self, *_: object) -> None:
-        # A second Ctrl-C or SIGTERM while stopping must not leave anything behind.
-        with contextlib.suppress(ValueError):
-            previous = signal.signal(signal.SIGINT, signal.SIG_IGN), signal.signal(signal.SIGTERM, signal.SIG_IGN)
-        try:
-            for process in reversed(self._order):
-                self.stop(process)
-        finally:
-            with contextlib.suppress(ValueError, NameError):
-                signal.signal(signal.SIGINT, previous[0])
-                signal.signal(signal.SIGTERM, previous[1])
-
-    def start(self, command: List[str], env: Dict[str, str], log_name: str) -> subprocess.Popen:
-        """Start ``command`` as a new process group, output to ``log_name`` in the log directory."""
-        tag = "%d-%d" % (os.getpid(), next(self._tags))
-        with open(os.path.join(self.log_dir, log_name), "ab") as log:
-            process = subprocess.Popen(
-                command,
-                env=dict(env, **{TAG_VARIABLE: tag}),
-                stdin=subprocess.DEVNULL,
-                stdout=log,
-                stderr=subprocess.STDOUT,
-                start_new_session=True,
-            )
-        self._running[process] = tag
-        self._order.append(process)
-        return process
-
-    def stop(self, process: subprocess.Popen) -> None:
-        """SIGINT to the group (roslaunch stops its nodes), then SIGKILL to whatever is left of it and to every
-        process with its tag."""
-        if process not in self._running:
-            return
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(process.pid, signal.SIGINT)
-        with contextlib.suppress(subprocess.TimeoutExpired):
-            process.wait(SHUTDOWN_TIMEOUT_S)
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(process.pid, signal.SIGKILL)
-        for pid in tagged_pids(self._running.pop(process)):
-            with contextlib.suppress(ProcessLookupError):
-                os.kill(pid, signal.SIGKILL)
-        process.wait()
-
-    def log_tail(self, log_name: str, lines: int = 20) -> str:
-        with contextlib.suppress(OSError), open(os.path.join(self.log_dir, log_name), errors="replace") as log:
-            return "".join(log.readlines()[-lines:])
-        return ""
-
-
-def free_port() -> int:
-    """A TCP port free on loopback (as scripts/lib/free_port.py)."""
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return probe.getsockname()[1]
-
-
 def start_master(processes: Processes) -> Dict[str, str]:
     """roscore on a free port; the environment that points ROS processes at it."""
     port = free_port()
@@ -198,13 +114,6 @@ def rss_bytes(pid: int) -> int:
             if line.startswith("VmRSS:"):
                 return int(line.split()[1]) * 1024
     raise SoakError("no VmRSS for pid %d" % pid)
-
-
-def cpu_seconds(pid: int) -> float:
-    """User + system CPU time of process ``pid``, all its threads."""
-    with open("/proc/%d/stat" % pid) as stat:
-        fields = stat.read().rsplit(")", 1)[1].split()  # from the state on: utime and stime are the 12th and 13th
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def fd_kind(target: str) -> str:

@@ -1,7 +1,5 @@
 #!/usr/bin/env python3
 """Print a TCP port that is free on the loopback interface (for a master of our own)."""
-import socket
+from ros_processes import free_port
 
-with socket.socket() as probe:
-    probe.bind(("127.0.0.1", 0))
-    print(probe.getsockname()[1])
+print(free_port())

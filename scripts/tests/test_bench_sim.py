@@ -4,14 +4,13 @@ import json
 import math
 import os
 import re
-import shutil
 import subprocess
 
 import pytest
+from conftest import ROS_PYTHON, ros_missing
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 BENCH = os.path.join(REPO, "scripts", "bench_sim.py")
-ROS_PYTHON = "/usr/bin/python3"
 TIMEOUT_S = 600  # --quick takes about 90 s on 2 cores; a busy machine may take longer
 SECTIONS = ("physics_only", "full_node", "real_time", "launch")
 # 0 = unthrottled; linearity needs three robot counts, --quick has two ([] stands for any list index)
@@ -21,26 +20,6 @@ MAY_BE_ZERO_OR_NONE = {
     "full_node.linearity_at_1ms.wall",
     "full_node.linearity_at_1ms.node_cpu",
 }
-
-
-def ros_missing():
-    """Why the benchmark cannot run here, or None."""
-    if not os.access(ROS_PYTHON, os.X_OK):
-        return ROS_PYTHON + " not found"
-    if not shutil.which("roscore") or not shutil.which("roslaunch"):
-        return "roscore/roslaunch not on PATH: source catkin_ws/devel/setup.bash"
-    result = subprocess.run(
-        [ROS_PYTHON, "-c", "import rospy, gazebo_msgs, turtle_sim_ode"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        universal_newlines=True,
-    )
-    if result.returncode != 0:
-        return "ROS or the workspace is not importable by %s (source catkin_ws/devel/setup.bash): %s" % (
-            ROS_PYTHON,
-            result.stdout.strip().splitlines()[-1],
-        )
-    return None
 
 
 def bad_figures(value, path):

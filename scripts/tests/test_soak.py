@@ -5,33 +5,15 @@ import argparse
 import importlib.util
 import json
 import os
-import shutil
 import subprocess
 
 import pytest
+from conftest import ROS_PYTHON, ros_missing
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SOAK = os.path.join(REPO, "scripts", "soak.py")
-ROS_PYTHON = "/usr/bin/python3"
 DURATION_S = 60
 TIMEOUT_S = DURATION_S + 240  # start-up, clean-up and a busy machine
-
-
-def ros_missing():
-    """Why the soak cannot run here, or None."""
-    if not os.access(ROS_PYTHON, os.X_OK):
-        return ROS_PYTHON + " not found"
-    if not shutil.which("roscore") or not shutil.which("roslaunch"):
-        return "roscore/roslaunch not on PATH: source catkin_ws/devel/setup.bash"
-    result = subprocess.run(
-        [ROS_PYTHON, "-c", "import rospy, gazebo_msgs.srv, turtle_sim_ode"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        universal_newlines=True,
-    )
-    if result.returncode != 0:
-        return "rospy is not importable by %s: %s" % (ROS_PYTHON, result.stdout.strip().splitlines()[-1])
-    return None
 
 
 @pytest.fixture(scope="module")

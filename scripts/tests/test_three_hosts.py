@@ -11,6 +11,7 @@ import textwrap
 import time
 
 import pytest
+from conftest import ros_missing
 
 SUBNET = "10.213.77"
 PREFIX = "tso%d" % (os.getpid() % 100000)
@@ -53,10 +54,6 @@ def _can_make_namespaces():
         return "cannot create a network namespace: %s" % error.stderr.decode().strip()
     _ip("netns", "del", probe)
     return None
-
-
-def _ros_importable():
-    return subprocess.run(["/usr/bin/python3", "-c", "import rospy"], capture_output=True).returncode == 0
 
 
 @pytest.fixture
@@ -123,8 +120,9 @@ class Graph:
 
 
 def test_master_simulator_and_driver_on_three_hosts(three_hosts, tmp_path):
-    if not _ros_importable():
-        pytest.skip("ROS Python (rospy) is not importable with /usr/bin/python3")
+    reason = ros_missing()
+    if reason:
+        pytest.skip(reason)
     graph = Graph(three_hosts)
     logs = {name: open(tmp_path / (name + ".log"), "w") for name in ("master", "sim", "drive")}
     try:

@@ -1,0 +1,26 @@
+"""Helpers shared by the workspace tests that start ROS processes."""
+import os
+import shutil
+import subprocess
+
+ROS_PYTHON = "/usr/bin/python3"
+
+
+def ros_missing():
+    """Why ROS and this workspace cannot run here (a reason to skip), or None."""
+    if not os.access(ROS_PYTHON, os.X_OK):
+        return ROS_PYTHON + " not found"
+    if not shutil.which("roscore") or not shutil.which("roslaunch"):
+        return "roscore/roslaunch not on PATH: source catkin_ws/devel/setup.bash"
+    result = subprocess.run(
+        [ROS_PYTHON, "-c", "import rospy, gazebo_msgs.srv, turtle_sim_ode"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        universal_newlines=True,
+    )
+    if result.returncode != 0:
+        return "ROS or the workspace is not importable by %s (source catkin_ws/devel/setup.bash): %s" % (
+            ROS_PYTHON,
+            result.stdout.strip().splitlines()[-1],
+        )
+    return None
