@@ -271,43 +271,62 @@ def _contact_config(link: str, sensor: Element, plugin: Element) -> ContactConfi
     )
 
 
+def _safe_xml(text: str, kind: str) -> Element:
+    try:
+        return SafeET.fromstring(text)
+    except ParseError as error:
+        raise ModelError(f"{kind} is not well-formed XML: {error}") from None
+    except defusedxml.DefusedXmlException as error:
+        raise ModelError(f"{kind} rejected by the XML guard: {error}") from None
+
+
+def _add_sensor(found: SensorBlocks, link: str, sensor: Element) -> None:
+    """One <sensor> on ``link`` (URDF and SDF write them alike): ray (``gpu_ray`` too), imu or contact."""
+    kind = sensor.get("type")
+    plugins = sensor.findall("plugin")
+    if kind in ("ray", "gpu_ray"):
+        found.lasers.append(_laser_config(link, sensor))
+    elif kind == "imu":
+        what = f"<sensor name='{sensor.get('name', '')}'>"
+        rate = _rate(sensor, ("update_rate",), 0.0, what)
+        found.imus += [
+            imu_config(p.get("filename"), {c.tag: c.text or "" for c in p}, link, rate)
+            for p in plugins
+            if p.get("filename") in IMU_PLUGINS
+        ]
+    elif kind == "contact":
+        found.contacts += [_contact_config(link, sensor, p) for p in plugins if p.get("filename") == BUMPER_PLUGIN]
+
+
 def read_sensors(urdf: str) -> SensorBlocks:
     """The ``<gazebo reference="link"><sensor>`` blocks of a URDF: ray (``gpu_ray`` too), imu and contact.
 
     urdf_model keeps only contact tags of referenced ``<gazebo>`` blocks, so the raw text is
     read again here. ModelError for malformed XML or bad values, or a sensor on no link.
     """
-    try:
-        robot = SafeET.fromstring(urdf)
-    except ParseError as error:
-        raise ModelError(f"URDF is not well-formed XML: {error}") from None
-    except defusedxml.DefusedXmlException as error:
-        raise ModelError(f"URDF rejected by the XML guard: {error}") from None
+    robot = _safe_xml(urdf, "URDF")
     links = {link.get("name") for link in robot.findall("link")}
     found = SensorBlocks()
     for gazebo in robot.findall("gazebo"):
         reference = gazebo.get("reference")
         for sensor in gazebo.findall("sensor"):
-            kind = sensor.get("type")
-            if kind not in ("ray", "gpu_ray", "imu", "contact"):
+            if sensor.get("type") not in ("ray", "gpu_ray", "imu", "contact"):
                 continue
             if reference is None or reference not in links:
                 raise ModelError(f"<sensor name='{sensor.get('name', '')}'> must be in a <gazebo reference=link>")
-            plugins = sensor.findall("plugin")
-            if kind in ("ray", "gpu_ray"):
-                found.lasers.append(_laser_config(reference, sensor))
-            elif kind == "imu":
-                what = f"<sensor name='{sensor.get('name', '')}'>"
-                rate = _rate(sensor, ("update_rate",), 0.0, what)
-                found.imus += [
-                    imu_config(p.get("filename"), {c.tag: c.text or "" for c in p}, reference, rate)
-                    for p in plugins
-                    if p.get("filename") in IMU_PLUGINS
-                ]
-            else:
-                found.contacts += [
-                    _contact_config(reference, sensor, p) for p in plugins if p.get("filename") == BUMPER_PLUGIN
-                ]
+            _add_sensor(found, reference, sensor)
+    return found
+
+
+def read_sdf_sensors(sdf: str) -> SensorBlocks:
+    """The ``<link><sensor>`` elements of an SDF model (``<sdf><model>`` or a bare ``<model>``); a sensor's
+    <pose> is in its link's frame, as in Gazebo. ModelError for malformed XML or bad values."""
+    root = _safe_xml(sdf, "SDF")
+    model = root if root.tag == "model" else root.find("model")
+    found = SensorBlocks()
+    for link in [] if model is None else model.findall("link"):
+        for sensor in link.findall("sensor"):
+            _add_sensor(found, link.get("name", ""), sensor)
     return found
 
 
@@ -757,6 +776,7 @@ __all__ = [
     "LaserConfig",
     "LaserScanner",
     "read_sensors",
+    "read_sdf_sensors",
     "imu_config",
     "ImuConfig",
     "ContactConfig",

@@ -10,7 +10,7 @@ from .diff_drive import DiffDriveController, WheelOdometry
 from .model_builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
 from .physics import PhysicsParams, PhysicsWorld
 from .plugins import DriveConfig, ModelPlugins, read_plugins
-from .sensors import read_sensors
+from .sensors import SensorBlocks, read_sdf_sensors, read_sensors
 from .sdf_model import World, _rpy, parse_sdf_model
 from .urdf_model import ModelError, RobotModel, parse_urdf
 from .world_control import SCOPE, WORLD_FRAMES, Load, QuatXYZW, WorldControl, WorldError, update_rate, vector
@@ -155,17 +155,24 @@ class Simulation(WorldControl):
         robot = parse_urdf(urdf)
         sensors = read_sensors(urdf)
         warnings = self.spawn_model(name, robot, pose, reference_frame)
+        self._attach_sensors(name, sensors)
+        return warnings
+
+    def _attach_sensors(self, name: str, sensors: SensorBlocks) -> None:
         plugins = self.plugins[name]
         plugins.lasers = [laser for laser in sensors.lasers if laser.topic]
         plugins.imus += sensors.imus
         plugins.contacts = sensors.contacts
-        return warnings
 
     def spawn_sdf(
         self, name: str, sdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
     ) -> List[str]:
-        """Parse an SDF <model> and ``spawn_model`` it; its own <pose> is not applied."""
-        return self.spawn_model(name, parse_sdf_model(sdf), pose, reference_frame)
+        """Parse an SDF <model> and ``spawn_model`` it, with its sensors; its own <pose> is not applied."""
+        robot = parse_sdf_model(sdf)
+        sensors = read_sdf_sensors(sdf)
+        warnings = self.spawn_model(name, robot, pose, reference_frame)
+        self._attach_sensors(name, sensors)
+        return warnings
 
     def load_world(self, world: World) -> List[str]:
         """Take the world's physics and pacing, spawn its inline models; return warnings (one

@@ -27,6 +27,7 @@ from turtle_sim_ode.sensors import (
     LaserConfig,
     LaserScanner,
     bumper_of,
+    read_sdf_sensors,
     read_sensors,
 )
 from turtle_sim_ode.simulation import Simulation
@@ -428,3 +429,42 @@ def test_read_sensors_rejects_bad_imu_rate() -> None:
     bad = SENSOR_BLOCKS.replace("<update_rate>100</update_rate>", "<update_rate>-1</update_rate>")
     with pytest.raises(ModelError, match="<update_rate> must be >= 0"):
         read_sensors(BARE_URDF.replace("</robot>", bad + "</robot>"))
+
+
+SENSOR_SDF = """<sdf version="1.6"><model name="sensor_post"><static>true</static>
+  <link name="post">
+    <collision name="collision"><geometry><box><size>0.1 0.1 0.4</size></box></geometry></collision>
+    <sensor type="ray" name="post_laser">
+      <pose>0 0 0.25 0 0 0</pose>
+      <update_rate>5</update_rate>
+      <ray><scan><horizontal><samples>4</samples><min_angle>0</min_angle><max_angle>4.71239</max_angle>
+      </horizontal></scan><range><min>0.06</min><max>5.0</max></range></ray>
+      <plugin name="laser" filename="libgazebo_ros_ray_sensor.so"><topicName>post_scan</topicName>
+        <frameName>post</frameName></plugin>
+    </sensor>
+    <sensor type="contact" name="post_bumper"><contact><collision>collision</collision></contact>
+      <plugin name="bumper" filename="libgazebo_ros_bumper.so"><bumperTopicName>post_contacts</bumperTopicName></plugin>
+    </sensor>
+  </link>
+</model></sdf>"""
+
+
+def test_sdf_model_sensors_are_read_and_scan() -> None:
+    blocks = read_sdf_sensors(SENSOR_SDF)
+    (laser,) = blocks.lasers
+    assert (laser.link, laser.topic, laser.samples, laser.update_rate) == ("post", "post_scan", 4, 5.0)
+    assert [(c.link, c.topic) for c in blocks.contacts] == [("post", "post_contacts")]
+    sim = Simulation()
+    sim.spawn_sdf("post", SENSOR_SDF, (0, 0, 0.2, 0, 0, 0))
+    static_box(sim, "target", (0.2, 0.2, 0.6), (1.1, 0.0, 0.3))
+    assert sim.plugins["post"].lasers == [laser] and sim.plugins["post"].contacts == blocks.contacts
+    ranges = LaserScanner(sim.physics, sim.models["post"], "post", laser).scan()
+    assert ranges[0] == pytest.approx(1.0, abs=0.01)  # the target's near face, 1 m ahead of the post's centre
+    assert all(math.isinf(r) for r in ranges[1:])
+
+
+def test_sdf_sensor_errors_name_the_sensor() -> None:
+    with pytest.raises(ModelError, match="post_laser"):
+        read_sdf_sensors(SENSOR_SDF.replace("<samples>4</samples>", "<samples>four</samples>"))
+    with pytest.raises(ModelError, match="XML guard"):
+        read_sdf_sensors('<!DOCTYPE m [<!ENTITY e "x">]><model name="m">&e;</model>')
