@@ -51,7 +51,7 @@ def test_builds_with_catkin_tools():
 
 
 def test_cpp_formatted():
-    files = tracked_files(".cpp", ".h")
+    files = tracked_files(".cpp", ".c", ".h")
     assert files
     result = run(["clang-format", "--dry-run", "--Werror", "--style=file"] + files, cwd=REPO)
     assert result.returncode == 0, result.stdout[-5000:]

@@ -10,6 +10,7 @@ from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequenc
 import ode
 
 from . import ode_constants as oc
+from .contact_kernel import ContactKernel
 
 SOLVERS = ("quick", "world")
 
@@ -195,7 +196,9 @@ class PhysicsWorld:
     nothing and each registered dynamic geom is tested against it directly.
     """
 
-    def __init__(self, params: Optional[PhysicsParams] = None) -> None:
+    def __init__(self, params: Optional[PhysicsParams] = None, contact_kernel: bool = True) -> None:
+        """``contact_kernel``: collide in the compiled kernel when it is built (see contact_kernel.py); False keeps
+        the Python path, which steps bitwise alike."""
         self.params = params if params is not None else PhysicsParams()
         self.params.validate()
         p = self.params
@@ -208,6 +211,10 @@ class PhysicsWorld:
         # Contact joints live until the next step; dropping a wrapper destroys its joint.
         # (No ode.JointGroup: its destructor double-frees joints that still have wrappers.)
         self._contact_joints: List[ode.ContactJoint] = []
+        self._contact_count = 0
+        self._kernel = ContactKernel.load() if contact_kernel else None
+        self._kernel_stale = True  # its tables must be set again before the next step
+        self._body_ids: Dict[ode.Body, int] = {}
         self._stepper = self.world.quickStep if p.solver == "quick" else self.world.step
         # sim_time = _time_base + _steps * time_step: exact, and continuous when time_step changes.
         self._time_base = 0.0
@@ -237,7 +244,11 @@ class PhysicsWorld:
     @property
     def contact_count(self) -> int:
         """Contact joints created in the last step."""
-        return len(self._contact_joints)
+        return self._contact_count
+
+    @property
+    def uses_contact_kernel(self) -> bool:
+        return self._kernel is not None
 
     def reset_time(self) -> None:
         """Time back to 0, and ODE's solver randomness with it, as in a fresh world."""
@@ -268,6 +279,7 @@ class PhysicsWorld:
         self._stepper = self.world.quickStep if params.solver == "quick" else self.world.step
         self._surfaces[self.ground] = params.ground_surface
         self._pair_cache.clear()
+        self._kernel_stale = True
         self._ground_tests = [
             (geom, body, self._pair_contact(self.ground, geom)) for geom, body, _ in self._ground_tests
         ]
@@ -278,6 +290,7 @@ class PhysicsWorld:
         space = ode.SimpleSpace(self.space)
         if self_collide:
             self._self_colliding.append(space)
+            self._kernel_stale = True
         return space
 
     def destroy_model_space(self, space: ode.SpaceBase) -> None:
@@ -287,6 +300,7 @@ class PhysicsWorld:
             space.remove(geom)
         if space in self._self_colliding:
             self._self_colliding.remove(space)
+            self._kernel_stale = True
         self.space.remove(space)
 
     @property
@@ -302,6 +316,7 @@ class PhysicsWorld:
         surface.validate("surface")
         self.unregister_geom(geom)
         self._surfaces[geom] = surface
+        self._kernel_stale = True
         body = geom.getBody()
         if body is not None:
             self._ground_tests.append((geom, body, self._pair_contact(self.ground, geom)))
@@ -313,6 +328,7 @@ class PhysicsWorld:
     def unregister_geom(self, geom: ode.GeomObject) -> None:
         if self._surfaces.pop(geom, None) is None:
             return
+        self._kernel_stale = True
         self._ground_tests = [t for t in self._ground_tests if t[0] is not geom]
         for pair in [pair for pair in self._pair_cache if geom in pair]:
             del self._pair_cache[pair]
@@ -321,10 +337,13 @@ class PhysicsWorld:
         """Never collide these two bodies (they are connected by a joint)."""
         self._jointed.add((body_a, body_b))
         self._jointed.add((body_b, body_a))
+        self._kernel_stale = True
 
     def forget_body(self, body: ode.Body) -> None:
         """Drop ``body`` from the exclusion table before it is destroyed."""
         self._jointed = {pair for pair in self._jointed if body not in pair}
+        self._body_ids.pop(body, None)
+        self._kernel_stale = True
 
     def add_post_step_hook(self, hook: Callable[[], None]) -> None:
         """Call ``hook()`` after every step (e.g. to track joint turns)."""
@@ -341,6 +360,7 @@ class PhysicsWorld:
         self._watches.append(watch)
         for geom in watch.geoms:
             self._watched.setdefault(geom, []).append(watch)
+        self._kernel_stale = True
         return watch
 
     def unwatch_contacts(self, watch: ContactWatch) -> None:
@@ -354,6 +374,7 @@ class PhysicsWorld:
                 watches.remove(watch)
             if not watches:
                 self._watched.pop(geom, None)
+        self._kernel_stale = True
 
     def _record_contacts(self, contacts: Sequence[ode.Contact], geom1: ode.GeomObject, geom2: ode.GeomObject) -> None:
         for watched, other, sign in ((geom1, geom2, 1.0), (geom2, geom1, -1.0)):
@@ -372,10 +393,55 @@ class PhysicsWorld:
     # --- stepping ----------------------------------------------------------------
     def step(self) -> None:
         """Collide, then advance exactly one fixed time step."""
-        self._contact_joints.clear()
         if self._watches:
             for watch in self._watches:
                 watch.contacts = []
+        if self._kernel is not None:
+            self._collide_in_kernel(self._kernel)
+        else:
+            self._collide_in_python()
+        self._stepper(self.params.time_step)
+        self._steps += 1
+        for hook in self._post_step_hooks:
+            hook()
+
+    def _collide_in_kernel(self, kernel: ContactKernel) -> None:
+        if self._kernel_stale:
+            self._set_kernel_tables(kernel)
+        self._contact_count = kernel.collide(self.params.max_contacts)
+        if self._watched:
+            geoms = ode._geom_c2py_lut  # PyODE's own id -> geom table
+            for geom_id, other_id, position, normal, depth in kernel.watched():
+                geom = geoms[geom_id]
+                record = WatchedContact(geom, geoms[other_id], position, normal, depth)
+                for watch in self._watched[geom]:
+                    watch.contacts.append(record)
+
+    def _set_kernel_tables(self, kernel: ContactKernel) -> None:
+        """Hand the kernel what _collide_in_python reads: surfaces (equal ones share an index; 0 is the default),
+        watched geoms, excluded body pairs, ground tests and spaces."""
+        indices: Dict[SurfaceParams, int] = {self.params.default_surface: 0}
+        geoms: Dict[int, Tuple[int, bool]] = {}
+        for geom, surface in self._surfaces.items():
+            geoms[geom._id()] = (indices.setdefault(surface, len(indices)), geom in self._watched)
+        for geom in self._watched:
+            geoms.setdefault(geom._id(), (0, True))
+        surfaces = list(indices)
+        for body in {body for pair in self._jointed for body in pair} - set(self._body_ids):
+            self._body_ids[body] = kernel.body_id(body)
+        kernel.set_tables(
+            geoms,
+            [combine_surfaces(a, b, self.time_step) for a in surfaces for b in surfaces],
+            [(self._body_ids[a], self._body_ids[b]) for a, b in self._jointed],
+            self.ground._id(),
+            [geom._id() for geom, _, _ in self._ground_tests],
+            self.space._id(),
+            [space._id() for space in self._self_colliding],
+        )
+        self._kernel_stale = False
+
+    def _collide_in_python(self) -> None:
+        self._contact_joints.clear()
         ground = self.ground
         watched = self._watched
         ground_watched = ground in watched
@@ -390,10 +456,7 @@ class PhysicsWorld:
             self.space.collide(None, self._near)
         for space in self._self_colliding:
             space.collide(None, self._near)
-        self._stepper(self.params.time_step)
-        self._steps += 1
-        for hook in self._post_step_hooks:
-            hook()
+        self._contact_count = len(self._contact_joints)
 
     def _near(self, _data: object, geom1: ode.GeomObject, geom2: ode.GeomObject) -> None:
         if geom1.isSpace() or geom2.isSpace():

@@ -71,10 +71,12 @@ class Simulation(WorldControl):
         physics_params: Optional[PhysicsParams] = None,
         drive_overrides: Optional[Mapping[str, object]] = None,
         max_update_rate: Optional[float] = None,
+        contact_kernel: bool = True,
     ) -> None:
         """``max_update_rate``: steps per wall second the node should pace to (Gazebo's
-        real_time_update_rate; 0 = as fast as possible); default: real time."""
-        self.physics = PhysicsWorld(physics_params)
+        real_time_update_rate; 0 = as fast as possible); default: real time. ``contact_kernel``: as
+        PhysicsWorld's."""
+        self.physics = PhysicsWorld(physics_params, contact_kernel)
         self.models: Dict[str, BuiltModel] = {}
         self.robots: Dict[str, DiffDriveRobot] = {}
         self.plugins: Dict[str, ModelPlugins] = {}  # what each model's plugin tags ask of the ROS side

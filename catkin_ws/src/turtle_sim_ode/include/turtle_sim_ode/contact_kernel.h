@@ -1,0 +1,59 @@
+/* Collision and contact-joint creation of PhysicsWorld.step in C (issue #8), called through ctypes
+ * (turtle_sim_ode/contact_kernel.py). It does what the Python path in physics.py does, in the same order and with
+ * the same floating-point operations, so both step a world bitwise alike (test_contact_kernel.py); it only saves
+ * Python's per-contact cost (about a third of a TurtleBot's step).
+ *
+ * The tables are set from Python whenever geoms, surfaces, watches or exclusions change; geoms and bodies are ODE
+ * ids taken from PyODE. Nothing here owns a geom or a body. */
+#ifndef TURTLE_SIM_ODE_CONTACT_KERNEL_H
+#define TURTLE_SIM_ODE_CONTACT_KERNEL_H
+
+#include <ode/ode.h>
+
+#ifdef __cplusplus
+extern "C"
+{
+#endif
+
+  /* One combined surface of a geom pair, as set on each of its contacts. */
+  typedef struct
+  {
+    int mode;
+    double mu, mu2, soft_erp, soft_cfm;
+  } TsoPairSurface;
+
+  /* A contact point touching a watched geom, before contact joints are made; the normal points from other to geom. */
+  typedef struct
+  {
+    dGeomID geom, other;
+    double position[3], normal[3], depth;
+  } TsoWatchedContact;
+
+  typedef struct TsoContactKernel TsoContactKernel;
+
+  TsoContactKernel* tso_kernel_create(void);
+  void tso_kernel_destroy(TsoContactKernel* kernel);
+
+  /* Geoms with a surface (index into the pair table; unlisted geoms use index 0) and whether contacts touching them
+   * are recorded. Returns 0, or -1 when out of memory (the old table is kept). */
+  int tso_kernel_set_geoms(TsoContactKernel* kernel, int count, const dGeomID* geoms, const int* surfaces,
+                           const unsigned char* watched);
+  /* surfaces x surfaces table: entry [i * surfaces + j] for a pair of geoms with surface indices i and j. */
+  int tso_kernel_set_pair_surfaces(TsoContactKernel* kernel, int surfaces, const TsoPairSurface* table);
+  /* Body pairs (two ids each) that never collide. */
+  int tso_kernel_set_excluded(TsoContactKernel* kernel, int count, const dBodyID* pairs);
+  /* The ground plane (in no space) and the geoms tested against it, in order. */
+  int tso_kernel_set_ground_tests(TsoContactKernel* kernel, dGeomID ground, int count, const dGeomID* geoms);
+
+  /* Destroy the last step's contact joints, then collide: ground tests, the top space, each self-colliding space.
+   * Returns the number of contact joints made. */
+  int tso_kernel_collide(TsoContactKernel* kernel, dSpaceID top, int self_colliding_count,
+                         const dSpaceID* self_colliding, int max_contacts);
+  /* The contacts touching watched geoms found by the last collide; *count is set to their number. */
+  const TsoWatchedContact* tso_kernel_watched(const TsoContactKernel* kernel, int* count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,177 @@
+"""ctypes binding of the compiled contact kernel (src/contact_kernel.c, built by catkin as
+libturtle_sim_ode_contacts.so): PhysicsWorld.step's collision and contact joints without Python's per-contact cost.
+
+The kernel steps a world bitwise like physics.py's Python path (test_contact_kernel.py), which stays in use where
+the library is not built or cannot be loaded (``ContactKernel.load`` returns None).
+"""
+from __future__ import annotations
+
+import ctypes
+import os
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
+
+import ode
+
+LIBRARY = "libturtle_sim_ode_contacts.so"
+
+# (mode, mu, mu2, soft_erp, soft_cfm), as physics.ContactSurface.
+PairSurface = Tuple[int, float, float, float, float]
+# (geom id, other geom id, position, normal from other towards geom, depth)
+WatchedPoint = Tuple[int, int, Tuple[float, float, float], Tuple[float, float, float], float]
+
+
+class _PairSurface(ctypes.Structure):
+    _fields_ = [
+        ("mode", ctypes.c_int),
+        ("mu", ctypes.c_double),
+        ("mu2", ctypes.c_double),
+        ("soft_erp", ctypes.c_double),
+        ("soft_cfm", ctypes.c_double),
+    ]
+
+
+class _WatchedContact(ctypes.Structure):
+    _fields_ = [
+        ("geom", ctypes.c_void_p),
+        ("other", ctypes.c_void_p),
+        ("position", ctypes.c_double * 3),
+        ("normal", ctypes.c_double * 3),
+        ("depth", ctypes.c_double),
+    ]
+
+
+def _find_library() -> Optional[ctypes.CDLL]:
+    """The kernel from the loader's path (catkin's setup puts devel/lib and install/lib on LD_LIBRARY_PATH), else
+    from each CMAKE_PREFIX_PATH entry's lib/."""
+    candidates = [LIBRARY] + [
+        os.path.join(prefix, "lib", LIBRARY) for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":") if prefix
+    ]
+    for candidate in candidates:
+        try:
+            return ctypes.CDLL(candidate)
+        except OSError:
+            continue
+    return None
+
+
+def _declare(lib: ctypes.CDLL) -> ctypes.CDLL:
+    pointer, integer, pointers = ctypes.c_void_p, ctypes.c_int, ctypes.POINTER(ctypes.c_void_p)
+    signatures = {
+        "tso_kernel_create": (pointer, []),
+        "tso_kernel_destroy": (None, [pointer]),
+        "tso_kernel_set_geoms": (
+            integer,
+            [pointer, integer, pointers, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_ubyte)],
+        ),
+        "tso_kernel_set_pair_surfaces": (integer, [pointer, integer, ctypes.POINTER(_PairSurface)]),
+        "tso_kernel_set_excluded": (integer, [pointer, integer, pointers]),
+        "tso_kernel_set_ground_tests": (integer, [pointer, pointer, integer, pointers]),
+        "tso_kernel_collide": (integer, [pointer, pointer, integer, pointers, integer]),
+        "tso_kernel_watched": (ctypes.POINTER(_WatchedContact), [pointer, ctypes.POINTER(ctypes.c_int)]),
+        "dGeomGetBody": (pointer, [pointer]),  # libode's, found through the kernel's dependencies
+    }
+    for name, (restype, argtypes) in signatures.items():
+        function = getattr(lib, name)
+        function.restype = restype
+        function.argtypes = argtypes
+    return lib
+
+
+_LIB: Optional[ctypes.CDLL] = None
+_LIB_SEARCHED = False
+
+
+def library() -> Optional[ctypes.CDLL]:
+    """The loaded kernel library, or None if it is not built (searched once)."""
+    global _LIB, _LIB_SEARCHED
+    if not _LIB_SEARCHED:
+        _LIB_SEARCHED = True
+        found = _find_library()
+        if found is not None:
+            try:
+                _LIB = _declare(found)
+            except AttributeError:  # an old build without every function
+                _LIB = None
+    return _LIB
+
+
+def _ids(values: Sequence[int]) -> ctypes.Array:
+    return (ctypes.c_void_p * max(1, len(values)))(*values)
+
+
+class ContactKernel:
+    """One PhysicsWorld's kernel: its tables and the joint group of the last step's contact joints."""
+
+    def __init__(self, lib: ctypes.CDLL) -> None:
+        self._lib = lib
+        self._handle = lib.tso_kernel_create()
+        if not self._handle:
+            raise MemoryError("tso_kernel_create")
+        self._count = ctypes.c_int()
+        self._spaces: Tuple[int, int, ctypes.Array] = (0, 0, _ids([]))  # top space, self-colliding spaces
+
+    @classmethod
+    def load(cls) -> Optional["ContactKernel"]:
+        lib = library()
+        return cls(lib) if lib is not None else None
+
+    def __del__(self) -> None:
+        handle, self._handle = getattr(self, "_handle", None), None
+        if handle:
+            self._lib.tso_kernel_destroy(handle)
+
+    def set_tables(
+        self,
+        geoms: Dict[int, Tuple[int, bool]],
+        pair_surfaces: Sequence[PairSurface],
+        excluded: Iterable[Tuple[int, int]],
+        ground: int,
+        ground_tests: Sequence[int],
+        top_space: int,
+        self_colliding: Sequence[int],
+    ) -> None:
+        """``geoms``: geom id -> (surface index, watched); ``pair_surfaces``: the S x S table, row-major, of the
+        surfaces of index pairs; ``excluded``: body id pairs that never collide; ``ground_tests``: geom ids tested
+        against the plane ``ground``, in order; then the spaces collided: ``top_space`` and the ``self_colliding``
+        model spaces."""
+        lib, handle = self._lib, self._handle
+        count = len(geoms)
+        ids = _ids(list(geoms))
+        surfaces = (ctypes.c_int * max(1, count))(*(surface for surface, _ in geoms.values()))
+        watched = (ctypes.c_ubyte * max(1, count))(*(int(flag) for _, flag in geoms.values()))
+        side = int(round(len(pair_surfaces) ** 0.5))
+        if side * side != len(pair_surfaces) or side < 1:
+            raise ValueError("pair surface table of %d entries is not square" % len(pair_surfaces))
+        table = (_PairSurface * len(pair_surfaces))(*(_PairSurface(*entry) for entry in pair_surfaces))
+        pairs = [body for pair in excluded for body in pair]
+        results = (
+            lib.tso_kernel_set_geoms(handle, count, ids, surfaces, watched),
+            lib.tso_kernel_set_pair_surfaces(handle, side, table),
+            lib.tso_kernel_set_excluded(handle, len(pairs) // 2, _ids(pairs)),
+            lib.tso_kernel_set_ground_tests(handle, ground, len(ground_tests), _ids(list(ground_tests))),
+        )
+        if any(results):
+            raise MemoryError("the contact kernel could not store its tables")
+        self._spaces = (top_space, len(self_colliding), _ids(self_colliding))
+
+    def collide(self, max_contacts: int) -> int:
+        """Destroy the last contact joints and make this step's; returns their number."""
+        return self._lib.tso_kernel_collide(self._handle, *self._spaces, max_contacts)
+
+    def body_id(self, body: Any) -> int:
+        """The ODE id of a PyODE Body (0 for None), read through a probe geom: PyODE gives bodies no ``_id``."""
+        if body is None:
+            return 0
+        probe = ode.GeomSphere(None, 1.0)
+        probe.setBody(body)
+        body_id = self._lib.dGeomGetBody(probe._id())
+        probe.setBody(None)
+        return body_id
+
+    def watched(self) -> List[WatchedPoint]:
+        """Points of the last collide touching watched geoms."""
+        points = self._lib.tso_kernel_watched(self._handle, ctypes.byref(self._count))
+        return [
+            (point.geom, point.other, tuple(point.position), tuple(point.normal), point.depth)
+            for point in points[: self._count.value]
+        ]

@@ -1,0 +1,139 @@
+"""The compiled contact kernel steps a world bitwise like physics.py's Python path.
+
+Each scenario runs twice from a freshly seeded ODE, once per path, and every step's body states, contact counts and
+watched contacts must be identical, float for float.
+"""
+from __future__ import annotations
+
+from typing import Callable, List, Tuple
+
+import ode
+import pytest
+
+from conftest import TURTLEBOT_URDF
+from turtle_sim_ode import contact_kernel
+from turtle_sim_ode.physics import PhysicsParams, PhysicsWorld, SurfaceParams, seed_ode_random
+from turtle_sim_ode.simulation import Simulation
+
+Trace = List[Tuple]
+
+
+def _state(bodies) -> Tuple:
+    return tuple(
+        body.getPosition() + body.getQuaternion() + body.getLinearVel() + body.getAngularVel() for body in bodies
+    )
+
+
+def _watched(watches, names) -> Tuple:
+    """Each watch's contacts, geoms by name (the two runs have geoms of their own)."""
+    return tuple(
+        tuple((names[c.geom], names[c.other], c.position, c.normal, c.depth) for c in watch.contacts)
+        for watch in watches
+    )
+
+
+def test_the_kernel_is_built_and_used_by_default():
+    assert contact_kernel.library() is not None, "libturtle_sim_ode_contacts.so not found: build the workspace"
+    assert PhysicsWorld().uses_contact_kernel
+    assert not PhysicsWorld(contact_kernel=False).uses_contact_kernel
+
+
+def _turtlebot_circle(kernel: bool) -> Trace:
+    seed_ode_random()
+    sim = Simulation(contact_kernel=kernel)
+    sim.spawn_urdf("mobile_base", TURTLEBOT_URDF, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0))
+    robot = sim.robots["mobile_base"]
+    robot.params.cmd_timeout = 0.0
+    robot.drive.set_command(0.5, 0.5, sim.sim_time)
+    wheel = robot.model.geoms["wheel_left_link"]
+    names = {geom: "wheel" for geom in wheel}
+    names[sim.physics.ground] = "ground"
+    watch = sim.physics.watch_contacts(wheel)
+    trace: Trace = []
+    for _ in range(2000):
+        sim.step()
+        trace.append((_state(robot.model.bodies), sim.physics.contact_count, _watched([watch], names)))
+    assert sim.physics.uses_contact_kernel == kernel
+    return trace
+
+
+def test_turtlebot_circle_is_bitwise_equal():
+    with_kernel, in_python = _turtlebot_circle(True), _turtlebot_circle(False)
+    _, contacts, (wheel_contacts,) = with_kernel[-1]
+    assert contacts == 4  # two merged wheel line contacts, two casters
+    assert wheel_contacts  # the watched wheel touches the ground
+    assert with_kernel == in_python
+
+
+def _pile(kernel: bool, change: Callable[[PhysicsWorld, dict], None]) -> Trace:
+    """Boxes (up to 8 contact points a pair, cut to max_contacts), spheres and a capsule dropped onto a static
+    table and each other, one model self-colliding with an excluded pair, a watched box and watched ground;
+    ``change`` runs at step 200."""
+    seed_ode_random()
+    physics = PhysicsWorld(PhysicsParams(max_contacts=3), contact_kernel=kernel)
+    table = ode.GeomBox(physics.static_space, (1.0, 1.0, 0.2))
+    table.setPosition((0.0, 0.0, 0.1))
+    physics.register_geom(table, SurfaceParams(mu=0.3, kp=1e6, kd=10.0))
+    parts = {"table": table}
+    bodies = []
+    names = {physics.ground: "ground", table: "table"}
+
+    def add(space, geom, position, surface=None):
+        body = ode.Body(physics.world)
+        mass = ode.Mass()
+        mass.setSphereTotal(1.0, 0.1)
+        body.setMass(mass)
+        body.setPosition(position)
+        body.setQuaternion((0.96, 0.1, 0.2, 0.1))
+        geom.setBody(body)
+        physics.register_geom(geom, surface)
+        bodies.append(body)
+        names[geom] = "geom %d" % len(bodies)
+        return body, geom
+
+    pile = physics.create_model_space(self_collide=True)
+    first, parts["box_a"] = add(pile, ode.GeomBox(pile, (0.2, 0.2, 0.2)), (0.0, 0.0, 0.32), SurfaceParams(mu=0.5))
+    second, parts["box_b"] = add(pile, ode.GeomBox(pile, (0.2, 0.2, 0.2)), (0.05, 0.0, 0.55))
+    third, _ = add(pile, ode.GeomSphere(pile, 0.1), (0.12, 0.05, 0.7), SurfaceParams(kp=1e5, kd=50.0))
+    physics.exclude_collision(second, third)
+    other = physics.create_model_space()
+    add(other, ode.GeomCapsule(other, 0.05, 0.3), (-0.1, 0.1, 0.6))
+    add(other, ode.GeomCylinder(other, 0.1, 0.05), (0.55, 0.0, 0.3))  # rolls off the table onto the ground
+    parts["other"] = other
+    parts["pile"] = pile
+    watches = [physics.watch_contacts([parts["box_a"]]), physics.watch_contacts([physics.ground])]
+    parts["watches"] = watches
+    trace: Trace = []
+    for step in range(400):
+        if step == 200:
+            change(physics, parts)
+        physics.step()
+        trace.append((_state(bodies), physics.contact_count, _watched(watches, names)))
+    assert physics.uses_contact_kernel == kernel
+    return trace
+
+
+def _no_change(physics: PhysicsWorld, parts: dict) -> None:
+    pass
+
+
+def _table_changes(physics: PhysicsWorld, parts: dict) -> None:
+    """Every kind of table change between steps: new surface, unregistered geom, watch dropped, new time step
+    (pair softness depends on it), a space deleted, an exclusion lifted by forgetting a body."""
+    physics.register_geom(parts["box_b"], SurfaceParams(mu=0.05, mu2=0.02))
+    physics.unregister_geom(parts["table"])
+    physics.unwatch_contacts(parts["watches"][1])
+    physics.set_params(PhysicsParams(max_contacts=2, time_step=0.002))
+    physics.destroy_model_space(parts["other"])
+    physics.forget_body(parts["box_b"].getBody())
+
+
+@pytest.mark.parametrize("change", [_no_change, _table_changes])
+def test_pile_of_shapes_is_bitwise_equal(change):
+    with_kernel, in_python = _pile(True, change), _pile(False, change)
+    assert max(count for _, count, _ in with_kernel) > 5
+    assert any(watched[0] for _, _, watched in with_kernel)
+    if change is _no_change:  # the cylinder rolls onto the watched ground (the change stops that watch before)
+        assert any(watched[1] for _, _, watched in with_kernel)
+    assert [entry[1:] for entry in with_kernel] == [entry[1:] for entry in in_python]  # first: clearer message
+    assert with_kernel == in_python
