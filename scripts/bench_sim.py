@@ -112,11 +112,12 @@ def machine() -> Dict[str, Any]:
 
 
 # --- 1. physics only ----------------------------------------------------------------------------------------------
-def turtlebot_simulation() -> Any:
-    """A Simulation (default physics) with the TurtleBot as MODEL, its drive commanded CIRCLE with no timeout."""
+def turtlebot_simulation(contact_kernel: bool = True) -> Any:
+    """A Simulation (default physics) with the TurtleBot as MODEL, its drive commanded CIRCLE with no timeout;
+    ``contact_kernel`` False collides in Python instead of the compiled kernel."""
     from turtle_sim_ode.simulation import Simulation
 
-    sim = Simulation()
+    sim = Simulation(contact_kernel=contact_kernel)
     with open(URDF_PATH) as urdf:
         sim.spawn_urdf(MODEL, urdf.read(), (0.0, 0.0, 0.0, 0.0, 0.0, 0.0))
     robot = sim.robots[MODEL]
@@ -253,11 +254,16 @@ def circle_track(seconds: float) -> List[Tuple[float, float]]:
 
 def physics_only(plan: Plan) -> Dict[str, Any]:
     """Section 1: our steps/s, the bare PyODE floor's, and the circle radius we drive."""
-    sim = turtlebot_simulation()
+    sim, in_python = turtlebot_simulation(), turtlebot_simulation(contact_kernel=False)
+    if not sim.physics.uses_contact_kernel:
+        raise BenchError("the contact kernel (libturtle_sim_ode_contacts.so) is not built: run scripts/build.sh")
     for _ in range(SETTLE_STEPS):
         sim.step()
+        in_python.step()
     bare = BarePyOde(sim)
-    ours, floor = best_steps_per_second((sim.step, bare.step), plan.physics_steps, plan.physics_repeats)
+    ours, floor, python_contacts = best_steps_per_second(
+        (sim.step, bare.step, in_python.step), plan.physics_steps, plan.physics_repeats
+    )
     dt = sim.physics.time_step
     return {
         "time_step": dt,
@@ -274,6 +280,11 @@ def physics_only(plan: Plan) -> Dict[str, Any]:
             "contacts_per_step": len(bare.contact_joints),
         },
         "overhead_ratio": floor / ours,
+        "python_contacts": {  # the Python collision path the kernel replaces (same results, bitwise)
+            "steps_per_s": python_contacts,
+            "us_per_step": 1e6 / python_contacts,
+            "rtf": python_contacts * dt,
+        },
         "circle_radius_m": fit_circle(circle_track(plan.circle_seconds)),
         "circle_expected_radius_m": CIRCLE[0] / CIRCLE[1],
     }
@@ -791,6 +802,13 @@ def table(results: Dict[str, Any]) -> str:
                 bare["contacts_per_step"],
             ),
             "%-34s %9.2f x" % ("our cost / floor cost", p["overhead_ratio"]),
+            "%-34s %9.0f steps/s %7.1f us/step  RTF %6.1f"
+            % (
+                "ours, contacts in Python",
+                p["python_contacts"]["steps_per_s"],
+                p["python_contacts"]["us_per_step"],
+                p["python_contacts"]["rtf"],
+            ),
             "%-34s %9.3f m (expected %.3f)"
             % ("circle v 0.5 m/s, w 0.5 rad/s", p["circle_radius_m"], p["circle_expected_radius_m"]),
         ]

@@ -36,6 +36,9 @@ struct TsoContactKernel
   dGeomID ground;
   dGeomID* ground_tests;
   int ground_test_count;
+  dSpaceID top;
+  dSpaceID* self_colliding;
+  int self_colliding_count;
   int max_contacts;
   int any_watched;
   int joint_count;
@@ -133,6 +136,7 @@ void tso_kernel_destroy(TsoContactKernel* kernel)
   free(kernel->pairs);
   free(kernel->excluded);
   free(kernel->ground_tests);
+  free(kernel->self_colliding);
   free(kernel->watched);
   free(kernel);
 }
@@ -196,6 +200,19 @@ int tso_kernel_set_ground_tests(TsoContactKernel* kernel, dGeomID ground, int co
     return -1;
   kernel->ground = ground;
   kernel->ground_test_count = count;
+  return 0;
+}
+
+int tso_kernel_set_spaces(TsoContactKernel* kernel, dSpaceID top, int self_colliding_count,
+                          const dSpaceID* self_colliding, int max_contacts)
+{
+  if (replace((void**)&kernel->self_colliding, self_colliding, self_colliding_count, sizeof(dSpaceID)) != 0)
+  {
+    return -1;
+  }
+  kernel->top = top;
+  kernel->self_colliding_count = self_colliding_count;
+  kernel->max_contacts = max_contacts;
   return 0;
 }
 
@@ -330,15 +347,13 @@ static void near_callback(void* data, dGeomID a, dGeomID b)
   }
 }
 
-int tso_kernel_collide(TsoContactKernel* kernel, dSpaceID top, int self_colliding_count, const dSpaceID* self_colliding,
-                       int max_contacts)
+int tso_kernel_collide(TsoContactKernel* kernel)
 {
   dContactGeom points[kMaxPointsPerPair];
   int i;
   dJointGroupEmpty(kernel->joints);
   kernel->joint_count = 0;
   kernel->watched_count = 0;
-  kernel->max_contacts = max_contacts;
   for (i = 0; i < kernel->ground_test_count; ++i)
   {
     dGeomID geom = kernel->ground_tests[i];
@@ -351,10 +366,10 @@ int tso_kernel_collide(TsoContactKernel* kernel, dSpaceID top, int self_collidin
                    is_cylinder(geom));
     }
   }
-  if (top != NULL && dSpaceGetNumGeoms(top) > 1)
-    dSpaceCollide(top, kernel, near_callback);
-  for (i = 0; i < self_colliding_count; ++i)
-    dSpaceCollide(self_colliding[i], kernel, near_callback);
+  if (kernel->top != NULL && dSpaceGetNumGeoms(kernel->top) > 1)
+    dSpaceCollide(kernel->top, kernel, near_callback);
+  for (i = 0; i < kernel->self_colliding_count; ++i)
+    dSpaceCollide(kernel->self_colliding[i], kernel, near_callback);
   return kernel->joint_count;
 }
 

@@ -6,8 +6,10 @@ import os
 import sys
 import unittest
 
+import rosgraph
 import rospy
 import rostest
+from rosgraph_msgs.msg import Log
 from gazebo_msgs import srv as gz
 from gazebo_msgs.msg import LinkState, ModelState, ModelStates, ODEJointProperties
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
@@ -305,6 +307,25 @@ class GazeboApi(unittest.TestCase):
         finally:
             self.unpause_physics()
         self.assertFalse(self.get_physics_properties().pause)
+
+    def test_simulator_keeps_sim_time_without_hearing_its_own_clock(self):
+        """rospy subscribes every node to /clock under /use_sim_time; the simulator, its source, drops that
+        subscriber and sets its ROS time as it publishes: its log messages carry the sim time."""
+        _, subscribers, _ = rosgraph.Master("/test_gazebo_api").getSystemState()
+        self.assertNotIn("/gazebo", dict(subscribers).get("/clock", []))
+        warnings = []
+        logs = rospy.Subscriber(
+            "/rosout", Log, lambda log: warnings.append(log) if "no_clock_model" in log.msg else None
+        )
+        self.addCleanup(logs.unregister)
+        deadline = rospy.get_rostime() + rospy.Duration(30)
+        while not warnings and rospy.get_rostime() < deadline:  # each refusal logs: repeat until one arrives
+            self.refused(self.delete_model("no_clock_model"), "no_clock_model")
+            rospy.sleep(0.2)
+        self.assertTrue(warnings, "no warning of the refused delete on /rosout")
+        sim_time = self.get_world_properties().sim_time
+        stamp = warnings[0].header.stamp.to_sec()
+        self.assertTrue(sim_time - 2.0 < stamp <= sim_time, "log stamp %.3f, sim time %.3f" % (stamp, sim_time))
 
     # --- forces ------------------------------------------------------------------------------------------------
     def test_body_wrench_pushes_for_its_duration(self):

@@ -45,10 +45,14 @@ extern "C"
   /* The ground plane (in no space) and the geoms tested against it, in order. */
   int tso_kernel_set_ground_tests(TsoContactKernel* kernel, dGeomID ground, int count, const dGeomID* geoms);
 
+  /* The spaces collided after the ground tests: the top space, then each self-colliding model space; and the
+   * most contact joints a geom pair gets (a two-point line contact merged to one aside). */
+  int tso_kernel_set_spaces(TsoContactKernel* kernel, dSpaceID top, int self_colliding_count,
+                            const dSpaceID* self_colliding, int max_contacts);
+
   /* Destroy the last step's contact joints, then collide: ground tests, the top space, each self-colliding space.
    * Returns the number of contact joints made. */
-  int tso_kernel_collide(TsoContactKernel* kernel, dSpaceID top, int self_colliding_count,
-                         const dSpaceID* self_colliding, int max_contacts);
+  int tso_kernel_collide(TsoContactKernel* kernel);
   /* The contacts touching watched geoms found by the last collide; *count is set to their number. */
   const TsoWatchedContact* tso_kernel_watched(const TsoContactKernel* kernel, int* count);
 

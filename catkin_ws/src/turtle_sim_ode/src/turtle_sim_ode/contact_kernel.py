@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+import struct
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 
 import ode
@@ -40,6 +41,11 @@ class _WatchedContact(ctypes.Structure):
     ]
 
 
+# _WatchedContact as struct sees it (native sizes and alignment, as the C compiler laid it out).
+_WATCHED_LAYOUT = struct.Struct("@PP7d")
+assert _WATCHED_LAYOUT.size == ctypes.sizeof(_WatchedContact)
+
+
 def _find_library() -> Optional[ctypes.CDLL]:
     """The kernel from the loader's path (catkin's setup puts devel/lib and install/lib on LD_LIBRARY_PATH), else
     from each CMAKE_PREFIX_PATH entry's lib/."""
@@ -66,7 +72,8 @@ def _declare(lib: ctypes.CDLL) -> ctypes.CDLL:
         "tso_kernel_set_pair_surfaces": (integer, [pointer, integer, ctypes.POINTER(_PairSurface)]),
         "tso_kernel_set_excluded": (integer, [pointer, integer, pointers]),
         "tso_kernel_set_ground_tests": (integer, [pointer, pointer, integer, pointers]),
-        "tso_kernel_collide": (integer, [pointer, pointer, integer, pointers, integer]),
+        "tso_kernel_set_spaces": (integer, [pointer, pointer, integer, pointers, integer]),
+        "tso_kernel_collide": (integer, [pointer]),
         "tso_kernel_watched": (ctypes.POINTER(_WatchedContact), [pointer, ctypes.POINTER(ctypes.c_int)]),
         "dGeomGetBody": (pointer, [pointer]),  # libode's, found through the kernel's dependencies
     }
@@ -108,7 +115,7 @@ class ContactKernel:
         if not self._handle:
             raise MemoryError("tso_kernel_create")
         self._count = ctypes.c_int()
-        self._spaces: Tuple[int, int, ctypes.Array] = (0, 0, _ids([]))  # top space, self-colliding spaces
+        self._collide = lib.tso_kernel_collide
 
     @classmethod
     def load(cls) -> Optional["ContactKernel"]:
@@ -129,11 +136,12 @@ class ContactKernel:
         ground_tests: Sequence[int],
         top_space: int,
         self_colliding: Sequence[int],
+        max_contacts: int,
     ) -> None:
         """``geoms``: geom id -> (surface index, watched); ``pair_surfaces``: the S x S table, row-major, of the
         surfaces of index pairs; ``excluded``: body id pairs that never collide; ``ground_tests``: geom ids tested
         against the plane ``ground``, in order; then the spaces collided: ``top_space`` and the ``self_colliding``
-        model spaces."""
+        model spaces; at most ``max_contacts`` contact joints a pair (but line contacts, merged)."""
         lib, handle = self._lib, self._handle
         count = len(geoms)
         ids = _ids(list(geoms))
@@ -149,14 +157,14 @@ class ContactKernel:
             lib.tso_kernel_set_pair_surfaces(handle, side, table),
             lib.tso_kernel_set_excluded(handle, len(pairs) // 2, _ids(pairs)),
             lib.tso_kernel_set_ground_tests(handle, ground, len(ground_tests), _ids(list(ground_tests))),
+            lib.tso_kernel_set_spaces(handle, top_space, len(self_colliding), _ids(self_colliding), max_contacts),
         )
         if any(results):
             raise MemoryError("the contact kernel could not store its tables")
-        self._spaces = (top_space, len(self_colliding), _ids(self_colliding))
 
-    def collide(self, max_contacts: int) -> int:
+    def collide(self) -> int:
         """Destroy the last contact joints and make this step's; returns their number."""
-        return self._lib.tso_kernel_collide(self._handle, *self._spaces, max_contacts)
+        return self._collide(self._handle)
 
     def body_id(self, body: Any) -> int:
         """The ODE id of a PyODE Body (0 for None), read through a probe geom: PyODE gives bodies no ``_id``."""
@@ -171,7 +179,8 @@ class ContactKernel:
     def watched(self) -> List[WatchedPoint]:
         """Points of the last collide touching watched geoms."""
         points = self._lib.tso_kernel_watched(self._handle, ctypes.byref(self._count))
+        data = ctypes.string_at(points, self._count.value * ctypes.sizeof(_WatchedContact))
         return [
-            (point.geom, point.other, tuple(point.position), tuple(point.normal), point.depth)
-            for point in points[: self._count.value]
+            (geom, other, (px, py, pz), (nx, ny, nz), depth)
+            for geom, other, px, py, pz, nx, ny, nz, depth in _WATCHED_LAYOUT.iter_unpack(data)
         ]

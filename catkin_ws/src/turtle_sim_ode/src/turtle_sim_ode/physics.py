@@ -159,7 +159,16 @@ class ContactWatch:
 
     def __init__(self, geoms: Iterable[ode.GeomObject]) -> None:
         self.geoms = frozenset(geoms)
-        self.contacts: List[WatchedContact] = []
+        self._contacts: List[WatchedContact] = []
+        # Set when the step's contacts are still in the contact kernel: read on demand, since most steps'
+        # contacts are never asked for (sensors read at their own rates).
+        self._fill: Optional[Callable[[], None]] = None
+
+    @property
+    def contacts(self) -> List[WatchedContact]:
+        if self._fill is not None:
+            self._fill()
+        return self._contacts
 
 
 def _merge_line_contact(contacts: Sequence[ode.Contact]) -> Sequence[ode.Contact]:
@@ -367,6 +376,7 @@ class PhysicsWorld:
         """Stop recording for ``watch`` (no error if it was already removed)."""
         if watch not in self._watches:
             return
+        watch._fill = None
         self._watches.remove(watch)
         for geom in watch.geoms:
             watches = self._watched.get(geom, [])
@@ -388,14 +398,13 @@ class PhysicsWorld:
                     watched, other, position, (sign * normal[0], sign * normal[1], sign * normal[2]), depth
                 )
                 for watch in watches:
-                    watch.contacts.append(record)
+                    watch._contacts.append(record)
 
     # --- stepping ----------------------------------------------------------------
     def step(self) -> None:
         """Collide, then advance exactly one fixed time step."""
-        if self._watches:
-            for watch in self._watches:
-                watch.contacts = []
+        for watch in self._watches:
+            watch._contacts = []
         if self._kernel is not None:
             self._collide_in_kernel(self._kernel)
         else:
@@ -408,14 +417,24 @@ class PhysicsWorld:
     def _collide_in_kernel(self, kernel: ContactKernel) -> None:
         if self._kernel_stale:
             self._set_kernel_tables(kernel)
-        self._contact_count = kernel.collide(self.params.max_contacts)
-        if self._watched:
-            geoms = ode._geom_c2py_lut  # PyODE's own id -> geom table
-            for geom_id, other_id, position, normal, depth in kernel.watched():
-                geom = geoms[geom_id]
-                record = WatchedContact(geom, geoms[other_id], position, normal, depth)
-                for watch in self._watched[geom]:
-                    watch.contacts.append(record)
+        self._contact_count = kernel.collide()
+        for watch in self._watches:
+            watch._fill = self._fill_watches
+
+    def _fill_watches(self) -> None:
+        """The last step's watched contacts, from the kernel into the watches that were there for it."""
+        pending = [watch for watch in self._watches if watch._fill is not None]
+        for watch in pending:
+            watch._fill = None
+        geoms = ode._geom_c2py_lut  # PyODE's own id -> geom table
+        for geom_id, other_id, position, normal, depth in self._kernel.watched():
+            geom, other = geoms.get(geom_id), geoms.get(other_id)
+            if geom is None or other is None:  # deleted since the step
+                continue
+            record = WatchedContact(geom, other, position, normal, depth)
+            for watch in self._watched.get(geom, ()):
+                if watch in pending:
+                    watch._contacts.append(record)
 
     def _set_kernel_tables(self, kernel: ContactKernel) -> None:
         """Hand the kernel what _collide_in_python reads: surfaces (equal ones share an index; 0 is the default),
@@ -437,6 +456,7 @@ class PhysicsWorld:
             [geom._id() for geom, _, _ in self._ground_tests],
             self.space._id(),
             [space._id() for space in self._self_colliding],
+            self.params.max_contacts,
         )
         self._kernel_stale = False
 

@@ -4,18 +4,24 @@ synchronously.
 Why (issue #8, measured on the 2-core dev machine): a genpy Odometry costs ~10 us to build and ~15 us to serialise,
 and a rospy publisher with a queue (queue_size=N) hands every message to a writer thread with time.sleep(0), a
 thread switch of 100-150 us. With one TurtleBot that was ~360 messages and ~50 ms of wall time per simulated second.
-One struct.pack of the whole message, published synchronously as rospy.AnyMsg, costs ~12 us, most of it the socket
-write. The bytes are those genpy would write (test_ros_wire.py compares them).
+One struct.pack of the whole message, written synchronously, costs a few us besides the socket write. The bytes are
+those genpy would write (test_ros_wire.py compares them).
 
-The price of synchronous publishing: a subscriber process that stops reading altogether (stopped, not merely slow:
-rospy and roscpp read their sockets in threads of their own) blocks the simulator once the kernel's socket buffers
-(megabytes) are full, as a lockstep partner would.
+Written by this module straight to each subscriber's socket, not by rospy's Publisher.publish (whose argument checks,
+buffer juggling and write_data made an Odometry cost 11-19 us against 9-10 us, socket write included, in two runs on
+the dev machine), with a send timeout: a subscriber process that stops reading altogether (stopped, not merely slow:
+rospy and roscpp read their sockets in threads of their own) would otherwise block the simulator for good once the
+kernel's socket buffers (megabytes) are full. One that takes nothing for STALLED_SUBSCRIBER_TIMEOUT_S is dropped with
+a warning; it may subscribe again.
 """
 from __future__ import annotations
 
+import select
+import socket
 import struct
+import time
 import warnings
-from typing import Any, Callable, Sequence, Tuple
+from typing import Any, Callable, List, Sequence, Tuple
 
 import rospy
 
@@ -23,6 +29,9 @@ Vec3 = Tuple[float, float, float]
 Quat = Tuple[float, float, float, float]  # x, y, z, w as in geometry_msgs
 
 _HEADER = "3I%ds"  # seq, stamp secs, stamp nsecs, then frame_id as a length-prefixed string
+_LENGTH = struct.Struct("<I")  # TCPROS frames each message with its length
+# Wall seconds a subscriber's socket may stay full before the subscriber is dropped (see the module's docstring).
+STALLED_SUBSCRIBER_TIMEOUT_S = 2.0
 
 
 def _string(text: str) -> bytes:
@@ -57,14 +66,70 @@ class PackedPublisher:
         """Publish the message ``pack(seq, *fields)`` if anyone listens (nothing is packed otherwise); seq is the
         header seq rospy gives the topic's next message, as it would to a genpy message."""
         impl = self._pub.impl
-        if impl is None or not impl.has_connections():
+        lock = impl.publock if impl is not None else None  # None once rospy has closed the topic (shutdown)
+        if lock is None or not impl.connections:
             return
-        message = rospy.AnyMsg()
-        message._buff = pack(impl.seq + 1, *fields)
-        self._pub.publish(message)
+        with lock:  # rospy's own: one message at a time on the sockets, and seq, as its publish does
+            impl.seq += 1
+            payload = pack(impl.seq, *fields)
+            data = _LENGTH.pack(len(payload)) + payload
+            stalled = send(impl.connections, data, STALLED_SUBSCRIBER_TIMEOUT_S)
+            impl.message_data_sent += len(data)
+        for connection in stalled:
+            rospy.logwarn(
+                "%s: subscriber %s took no message for %.0f s: dropped (it may subscribe again)",
+                impl.resolved_name,
+                connection.endpoint_id,
+                STALLED_SUBSCRIBER_TIMEOUT_S,
+            )
 
     def unregister(self) -> None:
         release(self._pub)
+
+
+def send(connections: Sequence[Any], data: bytes, timeout: float) -> List[Any]:
+    """Write ``data`` to each rospy TCPROS connection; one that fails is closed (rospy then forgets it). Returns
+    those that timed out: their subscriber took nothing for ``timeout`` wall seconds."""
+    stalled = []
+    for connection in connections:
+        if connection.done:
+            continue
+        sock = getattr(connection, "socket", None)
+        if sock is None:  # not a plain TCPROS connection (another publisher of the topic gave it a queue)
+            connection.write_data(data)
+            continue
+        try:
+            _send_all(sock, data, timeout)
+        except socket.timeout:
+            stalled.append(connection)
+            connection.close()  # part of a message may have gone: the stream cannot be resumed
+        except OSError:  # the subscriber went away (EPIPE, ECONNRESET)
+            connection.close()
+        else:
+            connection.stat_bytes += len(data)
+            connection.stat_num_msg += 1
+    return stalled
+
+
+def _send_all(sock: socket.socket, data: bytes, timeout: float) -> None:
+    """sock.sendall with a timeout (socket.timeout), leaving the socket blocking as rospy has it. One non-blocking
+    send() as a rule: a socket with a timeout of its own would cost a poll() before every send."""
+    try:
+        sent = sock.send(data, socket.MSG_DONTWAIT)
+    except BlockingIOError:
+        sent = 0
+    if sent == len(data):
+        return
+    rest = memoryview(data)[sent:]
+    deadline = time.monotonic() + timeout
+    while rest:
+        remaining = deadline - time.monotonic()
+        if remaining <= 0 or not select.select([], [sock], [], remaining)[1]:
+            raise socket.timeout("no room in the socket for %.1f s" % timeout)
+        try:
+            rest = rest[sock.send(rest, socket.MSG_DONTWAIT) :]
+        except BlockingIOError:
+            continue
 
 
 def release(handle: Any) -> None:

@@ -137,3 +137,29 @@ def test_pile_of_shapes_is_bitwise_equal(change):
         assert any(watched[1] for _, _, watched in with_kernel)
     assert [entry[1:] for entry in with_kernel] == [entry[1:] for entry in in_python]  # first: clearer message
     assert with_kernel == in_python
+
+
+@pytest.mark.parametrize("kernel", [True, False])
+def test_watched_contacts_are_the_last_steps_whenever_read(kernel):
+    """The kernel hands contacts over only when read: what is read must still be the last step's, once, for the
+    watches that were there during that step."""
+    physics = PhysicsWorld(contact_kernel=kernel)
+    space = physics.create_model_space()
+    body = ode.Body(physics.world)
+    mass = ode.Mass()
+    mass.setSphereTotal(1.0, 0.1)
+    body.setMass(mass)
+    body.setPosition((0.0, 0.0, 0.095))  # resting on the ground: one contact a step
+    ball = ode.GeomSphere(space, 0.1)
+    ball.setBody(body)
+    physics.register_geom(ball)
+    kept, dropped = physics.watch_contacts([ball]), physics.watch_contacts([ball])
+    for _ in range(5):
+        physics.step()
+    physics.unwatch_contacts(dropped)
+    late = physics.watch_contacts([ball])
+    assert len(kept.contacts) == 1 and kept.contacts[0].other is physics.ground
+    assert kept.contacts is kept.contacts  # read once, then kept
+    assert late.contacts == []  # not there during the step
+    physics.step()
+    assert len(late.contacts) == len(kept.contacts) == 1

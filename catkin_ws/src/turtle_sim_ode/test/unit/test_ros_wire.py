@@ -2,6 +2,8 @@
 import io
 import math
 import random
+import socket
+import time
 
 import genpy
 import pytest
@@ -112,3 +114,43 @@ def test_laser_scan(beams):
     scan = with_header(LaserScan(None, *geometry, ranges, []), "base_scan")
     packed = ros_wire.LaserScanPacker("base_scan", *geometry, beams).pack(SEQ, SECS, NSECS, ranges)
     assert packed == genpy_bytes(scan)
+
+
+class _Connection:
+    """What ros_wire.send uses of a rospy TCPROSTransport: a socket, done, close, stats."""
+
+    def __init__(self, sock):
+        self.socket = sock
+        self.done = False
+        self.stat_bytes = self.stat_num_msg = 0
+
+    def close(self):
+        self.done = True
+        self.socket.close()
+        self.socket = None
+
+
+def _socket_pair(buffer_bytes):
+    ours, theirs = socket.socketpair()
+    ours.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, buffer_bytes)
+    theirs.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, buffer_bytes)
+    return ours, theirs
+
+
+def test_send_reaches_readers_and_drops_a_stalled_or_gone_subscriber():
+    reading_end, reader = _socket_pair(1 << 16)
+    stalled_end, stalled_reader = _socket_pair(4096)  # never read: fills at once
+    gone_end, gone = _socket_pair(4096)
+    gone.close()
+    reading, stalled, closed = _Connection(reading_end), _Connection(stalled_end), _Connection(gone_end)
+    message = b"x" * 1000
+    started = time.monotonic()
+    dropped = []
+    for _ in range(40):
+        dropped += ros_wire.send([reading, stalled, closed], message, 0.2)
+        assert reader.recv(len(message), socket.MSG_WAITALL) == message  # the reader is served throughout
+    assert dropped == [stalled] and stalled.done and closed.done and not reading.done
+    assert time.monotonic() - started < 5.0  # held up once, for the timeout
+    assert reading.stat_num_msg == 40 and reading.stat_bytes == 40 * len(message)
+    for sock in (reader, stalled_reader, reading_end):
+        sock.close()
