@@ -476,7 +476,9 @@ def measure_rtf_task(send: Callable[[Any], None], robots: int, warmup_s: float, 
         topics.update({topic: kind for kind, topic in robot_topic_sets[-1].items()})
     for topic in topics:
         counts[topic] = 0
-        rospy.Subscriber(topic, rospy.AnyMsg, counter(topic), queue_size=10)
+        # No queue limit: rospy hands a lagging subscriber only the newest queue_size messages of each read, and the
+        # rates would then count what this process kept up with, not what the simulator sent.
+        rospy.Subscriber(topic, rospy.AnyMsg, counter(topic), queue_size=None)
     if not wait_until(lambda: all(counts.values()) and bool(clock), STARTUP_TIMEOUT_S):
         silent = sorted(topic for topic, count in counts.items() if not count)
         raise BenchError(

@@ -104,7 +104,7 @@ class GazeboApi:
             rospy.Subscriber("~set_link_state", LinkState, self._on_set_link_state, queue_size=10),
         ]
         self.states_period = 1.0 / states_rate
-        self._next_states_time = 0.0
+        self.next_states_time = 0.0
 
     # --- plumbing -------------------------------------------------------------------------------------------
     def _answer(self, name: str, srv_type, handler, locked: bool = True):
@@ -352,14 +352,14 @@ class GazeboApi:
 
     def _reset_simulation(self) -> None:
         self._sim.reset_simulation()
-        self._next_states_time = 0.0
+        self.next_states_time = 0.0
 
     # --- state topics ---------------------------------------------------------------------------------------
     def publish_states(self, now: float) -> None:
         """Publish model_states and link_states if someone listens and they are due (call from the sim loop)."""
-        if now < self._next_states_time:
+        if now < self.next_states_time:
             return
-        self._next_states_time = now + self.states_period
+        self.next_states_time = now + self.states_period
         if self._model_states_pub.get_num_connections():
             states = ModelStates()
             for name in self._sim.models:

@@ -29,6 +29,8 @@ from .urdf_model import ModelError
 
 # One /gazebo/step_simulation call holds the world for at most this many steps (about a minute of wall time).
 MAX_LOCKSTEP_STEPS = 1000000
+# The run loop holds the world for at most this many steps that publish nothing (a few ms): services get in between.
+MAX_QUIET_STEPS = 100
 
 
 class SimulatorNode:
@@ -140,6 +142,17 @@ class SimulatorNode:
         if self.sets_ros_time:
             set_ros_time(secs, nsecs)
 
+    def _step_quietly(self) -> None:
+        """Step through the steps at which nothing falls due without _advance's checks (call under the lock, after
+        a reset has been seen): two steps short of the next due time, so that rounding never skips one."""
+        due = min(self._next_due, self._next_clock, self.api.next_states_time if self.api is not None else math.inf)
+        quiet = min(int((due - self._now) / self.sim.physics.time_step) - 2, MAX_QUIET_STEPS)
+        if quiet > 0:
+            step = self.sim.step
+            for _ in range(quiet):
+                step()
+            self._now = self.sim.sim_time
+
     def _on_step_simulation(self, request: StepSimulationRequest) -> StepSimulationResponse:
         """Lockstep: exactly `steps` steps of a paused simulation, each publishing what it makes due."""
         if not self.paused:
@@ -170,6 +183,8 @@ class SimulatorNode:
             with self.lock:
                 if self.sim.sim_time < self._now:
                     anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
+                else:
+                    self._step_quietly()
                 self._advance()
                 now = self._now
                 rtf = self.sim.real_time_factor
