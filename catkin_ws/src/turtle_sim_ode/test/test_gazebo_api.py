@@ -9,7 +9,7 @@ import unittest
 import rosgraph
 import rospy
 import rostest
-from rosgraph_msgs.msg import Log
+from rosgraph_msgs.msg import Clock, Log
 from gazebo_msgs import srv as gz
 from gazebo_msgs.msg import LinkState, ModelState, ModelStates, ODEJointProperties
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
@@ -307,6 +307,25 @@ class GazeboApi(unittest.TestCase):
         finally:
             self.unpause_physics()
         self.assertFalse(self.get_physics_properties().pause)
+
+    def test_odom_and_clock_come_on_their_exact_sim_times(self):
+        """The loop runs the steps at which nothing is due back to back: no message may come a step late."""
+        stamps = {"/odom": [], "/clock": []}
+        subscribers = [
+            rospy.Subscriber("/odom", Odometry, lambda m: stamps["/odom"].append(m.header.stamp.to_nsec())),
+            rospy.Subscriber("/clock", Clock, lambda m: stamps["/clock"].append(m.clock.to_nsec())),
+        ]
+        for subscriber in subscribers:
+            self.addCleanup(subscriber.unregister)
+        deadline = rospy.get_rostime() + rospy.Duration(30)
+        while min(len(s) for s in stamps.values()) < 60 and rospy.get_rostime() < deadline:
+            rospy.sleep(0.1)
+        for topic, period_ns in (("/odom", 20000000), ("/clock", 10000000)):  # 50 Hz and 100 Hz of sim time
+            received = stamps[topic][1:]  # the first may be from before the subscription settled
+            gaps = {later - earlier for earlier, later in zip(received, received[1:])}
+            self.assertEqual(gaps, {period_ns}, "%s stamps %s" % (topic, received[:20]))
+        # /clock counts from sim time 0: a message a step late would also be off its grid ever after.
+        self.assertEqual({stamp % 10000000 for stamp in stamps["/clock"]}, {0}, stamps["/clock"][:20])
 
     def test_simulator_keeps_sim_time_without_hearing_its_own_clock(self):
         """rospy subscribes every node to /clock under /use_sim_time; the simulator, its source, drops that

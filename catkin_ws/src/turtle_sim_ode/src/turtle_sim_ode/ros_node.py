@@ -144,9 +144,9 @@ class SimulatorNode:
 
     def _step_quietly(self) -> None:
         """Step through the steps at which nothing falls due without _advance's checks (call under the lock, after
-        a reset has been seen): two steps short of the next due time, so that rounding never skips one."""
+        a reset has been seen): one step short of the next due time, so that rounding never skips it."""
         due = min(self._next_due, self._next_clock, self.api.next_states_time if self.api is not None else math.inf)
-        quiet = min(int((due - self._now) / self.sim.physics.time_step) - 2, MAX_QUIET_STEPS)
+        quiet = min(int((due - self._now) / self.sim.physics.time_step) - 1, MAX_QUIET_STEPS)
         if quiet > 0:
             step = self.sim.step
             for _ in range(quiet):
