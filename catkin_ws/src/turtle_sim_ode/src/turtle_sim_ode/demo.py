@@ -6,21 +6,47 @@ import os
 import sys
 import threading
 import time
-from typing import List, Tuple
+from dataclasses import dataclass
+from typing import Any, List, Mapping, Tuple
 
 import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
+from .settings import SettingsError, number_param, typed_param
 from .trajectory_plot import plot_paths
+
+# Beyond this the lap takes longer than anyone waits for a demo; a typo, more likely.
+MAX_DURATION_S = 3600.0
+
+
+@dataclass(frozen=True)
+class DemoSettings:
+    linear: float  # m/s
+    angular: float  # rad/s
+    duration: float  # sim s
+    output: str  # the plot's path
+
+
+def demo_settings(params: Mapping[str, Any]) -> DemoSettings:
+    """The demo's private parameters, checked (SettingsError names the bad one and its value). The lap lasts one
+    turn by default, 10 s when driving straight."""
+    linear = number_param(params, "linear", 0.5)
+    angular = number_param(params, "angular", 0.5)
+    default_duration = min(2 * math.pi / abs(angular), MAX_DURATION_S) if angular else 10.0
+    duration = number_param(params, "duration", default_duration, 0.0, True, MAX_DURATION_S)
+    output = typed_param(params, "output", "~/.ros/turtle_sim_ode_demo.png", str)
+    if not output.strip():
+        raise SettingsError("parameter ~output must name a file, got [%r]" % output)
+    return DemoSettings(linear, angular, duration, os.path.expanduser(output))
 
 
 class CircleDemo:
-    def __init__(self) -> None:
-        self.linear = float(rospy.get_param("~linear", 0.5))
-        self.angular = float(rospy.get_param("~angular", 0.5))
-        self.duration = float(rospy.get_param("~duration", 2 * math.pi / abs(self.angular) if self.angular else 10.0))
-        self.output = os.path.expanduser(rospy.get_param("~output", "~/.ros/turtle_sim_ode_demo.png"))
+    def __init__(self, settings: DemoSettings) -> None:
+        self.linear = settings.linear
+        self.angular = settings.angular
+        self.duration = settings.duration
+        self.output = settings.output
         self.odom: List[Tuple[float, float]] = []
         self.truth: List[Tuple[float, float]] = []
         self._lock = threading.Lock()
@@ -75,7 +101,12 @@ class CircleDemo:
 def main() -> int:
     rospy.init_node("circle_demo")
     try:
-        path = CircleDemo().run()
+        settings = demo_settings(rospy.get_param("~", {}))
+    except SettingsError as error:
+        rospy.logfatal(str(error))
+        return 1
+    try:
+        path = CircleDemo(settings).run()
     except (rospy.ROSInterruptException, rospy.ROSException) as error:
         rospy.logerr("demo stopped: %s", error)
         return 1

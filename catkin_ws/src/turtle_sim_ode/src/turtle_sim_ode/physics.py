@@ -13,6 +13,8 @@ from . import ode_constants as oc
 from .contact_kernel import ContactKernel
 
 SOLVERS = ("quick", "world")
+# Gravity (m/s² per axis) beyond which resting bodies tunnel through the ground and fall until ODE aborts (1e6 does).
+MAX_GRAVITY = 1e3
 
 # Gazebo's ODE contact: axis-dependent friction pyramid scaled by the normal force,
 # spring-damper softness from kp/kd.
@@ -118,8 +120,8 @@ class PhysicsParams:
             or not 1 <= self.solver_iterations <= 1000
         ):
             raise ValueError(f"solver_iterations must be an integer in 1..1000, got {self.solver_iterations!r}")
-        if len(self.gravity) != 3 or not all(_finite(g) for g in self.gravity):
-            raise ValueError(f"gravity must be 3 finite numbers, got {self.gravity!r}")
+        if len(self.gravity) != 3 or not all(_finite(g) and abs(g) <= MAX_GRAVITY for g in self.gravity):
+            raise ValueError(f"gravity must be 3 finite numbers within ±{MAX_GRAVITY:g} m/s², got {self.gravity!r}")
         if not _finite(self.erp) or not 0 <= self.erp <= 1:
             raise ValueError(f"erp must be in [0, 1], got {self.erp!r}")
         if not _finite(self.cfm) or self.cfm < 0:

@@ -278,7 +278,7 @@ def main() -> int:
             return 1
         try:
             node.spawn_urdf(settings.spawn_model_name, urdf, settings.spawn_pose)
-        except ModelError as error:
+        except (ModelError, WorldError, ValueError) as error:
             rospy.logfatal("cannot spawn model [%s]: %s" % (settings.spawn_model_name, error))
             return 1
     node.advertise()

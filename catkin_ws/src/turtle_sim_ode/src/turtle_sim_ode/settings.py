@@ -8,9 +8,8 @@ from typing import Any, Dict, Mapping, Tuple
 from rosgraph.names import is_legal_base_name
 
 from .diff_drive import DiffDriveParams
-from .physics import PhysicsParams
+from .physics import MAX_GRAVITY, PhysicsParams
 from .urdf_model import MAX_LENGTH
-from .world_control import MAX_GRAVITY
 
 # Parameters of physics.yaml, read into PhysicsParams (checked again by PhysicsParams.validate()).
 PHYSICS_PARAMS = (
@@ -70,7 +69,7 @@ class SimulatorSettings:
     drive_overrides: Dict[str, Any] = field(default_factory=dict)
 
 
-def _number(
+def number_param(
     params: Mapping[str, Any],
     name: str,
     default: float,
@@ -78,6 +77,8 @@ def _number(
     exclusive: bool = False,
     maximum: float = math.inf,
 ) -> float:
+    """Private parameter ``name`` from ``params`` (``default`` when absent): a finite number within the bounds, or
+    SettingsError naming the parameter and its value."""
     value = params.get(name, default)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise SettingsError(f"parameter ~{name} must be a finite number, got [{value!r}]")
@@ -88,7 +89,8 @@ def _number(
     return float(value)
 
 
-def _typed(params: Mapping[str, Any], name: str, default: Any, kind: type) -> Any:
+def typed_param(params: Mapping[str, Any], name: str, default: Any, kind: type) -> Any:
+    """Private parameter ``name`` of type ``kind`` (``default`` when absent), or SettingsError naming it."""
     value = params.get(name, default)
     if not isinstance(value, kind) or (kind is int and isinstance(value, bool)):
         raise SettingsError(f"parameter ~{name} must be of type {kind.__name__}, got [{value!r}]")
@@ -107,14 +109,14 @@ def _physics(params: Mapping[str, Any]) -> PhysicsParams:
             if not isinstance(gravity, (list, tuple)) or len(gravity) != 3:
                 raise SettingsError(f"parameter ~gravity must be a list of 3 numbers, got [{gravity!r}]")
             values[name] = tuple(
-                _number({"gravity": g}, "gravity", 0.0, -MAX_GRAVITY, maximum=MAX_GRAVITY) for g in gravity
+                number_param({"gravity": g}, "gravity", 0.0, -MAX_GRAVITY, maximum=MAX_GRAVITY) for g in gravity
             )
         elif name == "solver":
-            values[name] = _typed(params, name, default, str)
+            values[name] = typed_param(params, name, default, str)
         elif isinstance(default, int):
-            values[name] = _typed(params, name, default, int)
+            values[name] = typed_param(params, name, default, int)
         else:
-            values[name] = _number(params, name, default)
+            values[name] = number_param(params, name, default)
     physics = PhysicsParams(**values)
     try:
         physics.validate()
@@ -134,9 +136,9 @@ def _drive_overrides(params: Mapping[str, Any]) -> Dict[str, Any]:
     for name, value in overrides.items():
         key = "diff_drive/" + name
         if name == "odometry_integration":
-            checked[name] = _typed({key: value}, key, "midpoint", str)
+            checked[name] = typed_param({key: value}, key, "midpoint", str)
         else:
-            checked[name] = _number({key: value}, key, 0.0, minimum=0.0)
+            checked[name] = number_param({key: value}, key, 0.0, minimum=0.0)
     try:
         DiffDriveParams(**checked).validate()
     except ValueError as error:
@@ -148,13 +150,15 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
     """Build settings from the node's private parameter dictionary (rospy.get_param("~"))."""
     defaults = SimulatorSettings()
     settings = SimulatorSettings(
-        real_time_factor=_number(params, "real_time_factor", defaults.real_time_factor, minimum=0.0),
-        paused=_typed(params, "paused", defaults.paused, bool),
-        pub_clock_frequency=_number(params, "pub_clock_frequency", defaults.pub_clock_frequency, 0.0, True),
-        publish_rate=_number(params, "publish_rate", defaults.publish_rate, 0.0, True),
-        model_states_rate=_number(params, "model_states_rate", defaults.model_states_rate, 0.0, True),
-        publish_tf=_typed(params, "publish_tf", defaults.publish_tf, bool),
-        spawn_pose=tuple(_number(params, "spawn_" + axis, 0.0, -limit, maximum=limit) for axis, limit in SPAWN_AXES),
+        real_time_factor=number_param(params, "real_time_factor", defaults.real_time_factor, minimum=0.0),
+        paused=typed_param(params, "paused", defaults.paused, bool),
+        pub_clock_frequency=number_param(params, "pub_clock_frequency", defaults.pub_clock_frequency, 0.0, True),
+        publish_rate=number_param(params, "publish_rate", defaults.publish_rate, 0.0, True),
+        model_states_rate=number_param(params, "model_states_rate", defaults.model_states_rate, 0.0, True),
+        publish_tf=typed_param(params, "publish_tf", defaults.publish_tf, bool),
+        spawn_pose=tuple(
+            number_param(params, "spawn_" + axis, 0.0, -limit, maximum=limit) for axis, limit in SPAWN_AXES
+        ),
         physics=_physics(params),
         drive_overrides=_drive_overrides(params),
     )
@@ -167,7 +171,7 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
         "spawn_model_name",
         "spawn_robot_description",
     ):
-        setattr(settings, name, _typed(params, name, getattr(defaults, name), str))
+        setattr(settings, name, typed_param(params, name, getattr(defaults, name), str))
     for name in ("odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame"):
         if not getattr(settings, name):
             raise SettingsError(f"parameter ~{name} must not be empty")

@@ -28,7 +28,7 @@ from .model_builder import (
     quat_multiply,
     quat_rotate,
 )
-from .physics import PhysicsWorld
+from .physics import MAX_GRAVITY, PhysicsWorld
 from .urdf_model import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
 
 if TYPE_CHECKING:
@@ -59,8 +59,6 @@ TIME_EPSILON = 1e-9
 # within a few steps (its collision grid takes coordinates below ~1e8 m; a 1e300 N push overflows).
 MAX_SPEED = 1e4
 MAX_FORCE = 1e6
-# Gravity (m/s^2) beyond which resting bodies tunnel through the ground and fall until ODE aborts (1e6 does).
-MAX_GRAVITY = 1e3
 
 # gazebo_msgs/ODEJointProperties fields set with joint.setParam (first axis only).
 _JOINT_PARAMS = (

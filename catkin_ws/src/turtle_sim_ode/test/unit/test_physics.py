@@ -20,6 +20,7 @@ from turtle_sim_ode.physics import PhysicsParams, PhysicsWorld, SurfaceParams, c
         ("solver_iterations", 2.5),
         ("gravity", (0.0, 0.0, math.nan)),
         ("gravity", (0.0, 9.81)),
+        ("gravity", (0.0, 0.0, -1e4)),
         ("erp", 1.5),
         ("cfm", -1.0),
         ("max_contacts", 0),

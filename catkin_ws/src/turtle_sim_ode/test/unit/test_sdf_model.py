@@ -159,6 +159,12 @@ def test_world_physics_default_block_and_range():
         world.physics.apply(PhysicsParams())
 
 
+def test_world_gravity_beyond_the_bound_is_refused():
+    world = parse_sdf_world(sdf('<world name="w"><gravity>0 0 -1e6</gravity></world>'))
+    with pytest.raises(ModelError, match=r"gravity .*-1000000"):
+        world.physics.apply(PhysicsParams())
+
+
 # --- models ------------------------------------------------------------------------------
 def test_two_link_revolute_model_moves_and_stops_at_its_limit():
     robot = parse_sdf_model(sdf(ARM))
