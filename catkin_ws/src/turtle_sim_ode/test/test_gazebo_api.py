@@ -308,8 +308,18 @@ class GazeboApi(unittest.TestCase):
             self.unpause_physics()
         self.assertFalse(self.get_physics_properties().pause)
 
-    def test_odom_and_clock_come_on_their_exact_sim_times(self):
-        """The loop runs the steps at which nothing is due back to back: no message may come a step late."""
+    def test_odom_and_clock_come_on_their_exact_sim_times_when_unpaced(self):
+        """Unpaced, the loop runs the steps at which nothing is due back to back: no message may come a step late."""
+        physics = self.get_physics_properties()
+        unpaced = self.set_physics_properties(physics.time_step, 0.0, physics.gravity, physics.ode_config)
+        self.assertTrue(unpaced.success, unpaced.status_message)
+        self.addCleanup(
+            self.set_physics_properties,
+            physics.time_step,
+            physics.max_update_rate,
+            physics.gravity,
+            physics.ode_config,
+        )
         stamps = {"/odom": [], "/clock": []}
         subscribers = [
             rospy.Subscriber("/odom", Odometry, lambda m: stamps["/odom"].append(m.header.stamp.to_nsec())),
@@ -317,14 +327,14 @@ class GazeboApi(unittest.TestCase):
         ]
         for subscriber in subscribers:
             self.addCleanup(subscriber.unregister)
-        deadline = rospy.get_rostime() + rospy.Duration(30)
+        deadline = rospy.get_rostime() + rospy.Duration(300)
         while min(len(s) for s in stamps.values()) < 60 and rospy.get_rostime() < deadline:
-            rospy.sleep(0.1)
-        for topic, period_ns in (("/odom", 20000000), ("/clock", 10000000)):  # 50 Hz and 100 Hz of sim time
-            received = stamps[topic][1:]  # the first may be from before the subscription settled
-            gaps = {later - earlier for earlier, later in zip(received, received[1:])}
-            self.assertEqual(gaps, {period_ns}, "%s stamps %s" % (topic, received[:20]))
-        # /clock counts from sim time 0: a message a step late would also be off its grid ever after.
+            rospy.rostime.wallsleep(0.05)
+        received = stamps["/odom"][1:]  # the first may be from before the subscription settled
+        gaps = {later - earlier for earlier, later in zip(received, received[1:])}
+        self.assertEqual(gaps, {20000000}, "odom (50 Hz) stamps %s" % received[:20])
+        # /clock counts from sim time 0 at 100 Hz: a message a step late would be off its grid ever after. (Gaps
+        # prove nothing here: rospy's own /clock subscriber in this node keeps only the newest message.)
         self.assertEqual({stamp % 10000000 for stamp in stamps["/clock"]}, {0}, stamps["/clock"][:20])
 
     def test_simulator_keeps_sim_time_without_hearing_its_own_clock(self):

@@ -143,8 +143,8 @@ class SimulatorNode:
             set_ros_time(secs, nsecs)
 
     def _step_quietly(self) -> None:
-        """Step through the steps at which nothing falls due without _advance's checks (call under the lock, after
-        a reset has been seen): one step short of the next due time, so that rounding never skips it."""
+        """Step through the steps at which nothing falls due without _advance's checks (call unpaced, under the lock,
+        after a reset has been seen): one step short of the next due time, so that rounding never skips it."""
         due = min(self._next_due, self._next_clock, self.api.next_states_time if self.api is not None else math.inf)
         quiet = min(int((due - self._now) / self.sim.physics.time_step) - 1, MAX_QUIET_STEPS)
         if quiet > 0:
@@ -181,13 +181,13 @@ class SimulatorNode:
                 anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
                 continue
             with self.lock:
+                rtf = self.sim.real_time_factor
                 if self.sim.sim_time < self._now:
                     anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
-                else:
+                elif rtf == 0:  # paced, each step keeps its own wall time: sim time never runs ahead
                     self._step_quietly()
                 self._advance()
                 now = self._now
-                rtf = self.sim.real_time_factor
             if rtf > 0:
                 delay = anchor_wall + (now - anchor_sim) / rtf - time.monotonic()
                 if delay > 0:
