@@ -33,10 +33,11 @@ import time
 import traceback
 import xmlrpc.client
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Set, Tuple
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
 from ros_processes import SHUTDOWN_TIMEOUT_S, Processes, cpu_seconds, free_port  # noqa: E402
+from tcpros_reader import Reader, TopicStream, clock_stamp  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PACKAGE = os.path.join(REPO, "catkin_ws", "src", "turtle_sim_ode")
@@ -109,6 +110,14 @@ def machine() -> Dict[str, Any]:
         "ode": debian_version("libode8"),
         "load_average_at_start": os.getloadavg()[0],
     }
+
+
+def cpu_ticks() -> Tuple[int, int]:
+    """(all, stolen) CPU ticks of the machine so far (/proc/stat): on a virtual machine the host may take cores
+    away for a while, and the figures of that stretch then come out low."""
+    with open("/proc/stat") as stat:
+        fields = [int(field) for field in stat.readline().split()[1:]]
+    return sum(fields), fields[7] if len(fields) > 7 else 0
 
 
 # --- 1. physics only ----------------------------------------------------------------------------------------------
@@ -386,6 +395,9 @@ def _probe_main(connection: Any, ros_env: Dict[str, str], task: Callable[..., No
         import rospy
 
         rospy.init_node("bench_sim_probe", anonymous=True, disable_signals=True)
+        clock_subscriber = getattr(rospy.impl.simtime, "_clock_sub", None)
+        if clock_subscriber is not None:  # /use_sim_time: the probe times with the wall clock and reads /clock itself
+            clock_subscriber.unregister()
         task(lambda value: connection.send(("value", value)), *args)
     except BenchError as error:
         connection.send(("error", str(error)))
@@ -440,29 +452,15 @@ def measure_rtf_task(send: Callable[[Any], None], robots: int, warmup_s: float, 
     import rospy
     from gazebo_msgs.srv import SpawnModel
     from geometry_msgs.msg import Point, Pose, Quaternion, Twist
+    import rosgraph
     from nav_msgs.msg import Odometry
-    from rosgraph_msgs.msg import Clock
 
     rospy.wait_for_service("/gazebo/spawn_urdf_model", STARTUP_TIMEOUT_S)
     spawn = rospy.ServiceProxy("/gazebo/spawn_urdf_model", SpawnModel)
     with open(URDF_PATH) as urdf_file:
         urdf = urdf_file.read()
-    counts: Dict[str, int] = {}  # topic -> messages: one subscriber thread writes each entry
-    last: Dict[str, Any] = {}  # topic -> the last message, serialized (rospy.AnyMsg)
-
-    def counter(topic: str) -> Callable[[Any], None]:
-        def count(message: Any) -> None:
-            counts[topic] += 1
-            last[topic] = message
-
-        return count
-
     clock: List[Tuple[float, float]] = []  # (wall, sim) of each /clock message
-    # No delay: Nagle's algorithm would batch the small /clock messages and blur their intervals.
-    rospy.Subscriber(
-        "/clock", Clock, lambda message: clock.append((time.monotonic(), message.clock.to_sec())), tcp_nodelay=True
-    )
-    topics = {"/tf": "tf"}
+    topics = {"/clock": "clock", "/tf": "tf"}
     robot_topic_sets = []
     for index in range(robots):
         name = "robot_%d" % index
@@ -474,30 +472,48 @@ def measure_rtf_task(send: Callable[[Any], None], robots: int, warmup_s: float, 
         command.publish(Twist(linear=Point(CIRCLE[0], 0, 0), angular=Point(0, 0, CIRCLE[1])))
         robot_topic_sets.append(robot_topics(name))
         topics.update({topic: kind for kind, topic in robot_topic_sets[-1].items()})
-    for topic in topics:
-        counts[topic] = 0
-        # No queue limit: rospy hands a lagging subscriber only the newest queue_size messages of each read, and the
-        # rates would then count what this process kept up with, not what the simulator sent.
-        rospy.Subscriber(topic, rospy.AnyMsg, counter(topic), queue_size=None)
-    if not wait_until(lambda: all(counts.values()) and bool(clock), STARTUP_TIMEOUT_S):
-        silent = sorted(topic for topic, count in counts.items() if not count)
-        raise BenchError(
-            "no message on %s; published: %s" % (silent, sorted(t for t, _ in rospy.get_published_topics()))
+
+    # Raw TCPROS readers, not rospy subscribers: every message is still sent and read, but this process spends
+    # about a microsecond on each instead of a rospy callback's tens, which would load the machine it measures.
+    def published() -> Set[str]:
+        return {topic for topic, _ in rospy.get_published_topics()}
+
+    if not wait_until(lambda: set(topics) <= published(), STARTUP_TIMEOUT_S):
+        raise BenchError("not published: %s" % sorted(set(topics) - published()))
+    streams = [
+        TopicStream(
+            rosgraph.get_master_uri(),
+            rospy.get_name(),
+            topic,
+            (lambda wall, payload: clock.append((wall, clock_stamp(payload)))) if topic == "/clock" else None,
         )
-    simulator = node_pid("/gazebo")
-    time.sleep(warmup_s)
-    start_counts, start, start_cpu = dict(counts), time.monotonic(), cpu_seconds(simulator)
-    time.sleep(window_s)
-    end_counts, end, end_cpu = dict(counts), time.monotonic(), cpu_seconds(simulator)
+        for topic in topics
+    ]
+    reader = Reader(streams)
+    try:
+        if not wait_until(lambda: all(reader.counts().values()), STARTUP_TIMEOUT_S):
+            silent = sorted(topic for topic, count in reader.counts().items() if not count)
+            raise BenchError("no message on %s" % silent)
+        simulator = node_pid("/gazebo")
+        time.sleep(warmup_s)
+        start_counts, start, start_cpu = reader.counts(), time.monotonic(), cpu_seconds(simulator)
+        time.sleep(window_s)
+        end_counts, end, end_cpu = reader.counts(), time.monotonic(), cpu_seconds(simulator)
+        last = {stream.topic: stream.last for stream in streams}
+    finally:
+        reader.close()
+    if reader.error is not None:
+        raise BenchError("reading the topics failed: %s" % reader.error)
     window = [(wall, sim) for wall, sim in list(clock) if start <= wall <= end]
     if len(window) < 2:
         raise BenchError("only %d /clock messages in %.1f wall seconds" % (len(window), window_s))
     wall_s, sim_s = window[-1][0] - window[0][0], window[-1][1] - window[0][1]
     per_kind: Dict[str, int] = {}
     for topic, kind in topics.items():
-        per_kind[kind] = per_kind.get(kind, 0) + end_counts[topic] - start_counts[topic]
+        if kind != "clock":
+            per_kind[kind] = per_kind.get(kind, 0) + end_counts[topic] - start_counts[topic]
     intervals_ms = [1e3 * (later[0] - earlier[0]) for earlier, later in zip(window, window[1:])]
-    odometry = [Odometry().deserialize(last[of_robot["odom"]]._buff).twist.twist for of_robot in robot_topic_sets]
+    odometry = [Odometry().deserialize(last[of_robot["odom"]]).twist.twist for of_robot in robot_topic_sets]
     send(
         {
             "robots": robots,
@@ -764,7 +780,8 @@ def table(results: Dict[str, Any]) -> str:
     m = results["machine"]
     lines = [
         "turtle_sim_ode benchmark (issue #8), %s run, %s" % (results["mode"], results["date"]),
-        "machine: %d cores, %s, Linux %s, Python %s, ROS %s, PyODE %s, ODE %s, load %.2f at start, %.2f at end"
+        "machine: %d cores, %s, Linux %s, Python %s, ROS %s, PyODE %s, ODE %s, load %.2f at start, %.2f at end, "
+        "%.0f %% of the CPU time stolen by the host"
         % (
             m["nproc"],
             m["cpu_model"],
@@ -775,6 +792,7 @@ def table(results: Dict[str, Any]) -> str:
             m["ode"],
             m["load_average_at_start"],
             m["load_average_at_end"],
+            100 * m["stolen_cpu_share"],
         ),
         "",
     ]
@@ -920,6 +938,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         "date": datetime.datetime.now().isoformat(timespec="seconds"),
         "machine": machine(),
     }
+    ticks_at_start = cpu_ticks()
     with tempfile.TemporaryDirectory(prefix="bench_sim-") as log_dir, Processes(log_dir) as processes:
         measure(results, "physics_only", "1. physics only", lambda: physics_only(plan))
         if args.no_peer:
@@ -930,6 +949,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         measure(results, "real_time", "3. real time", lambda: real_time(plan, processes))
         measure(results, "launch", "4. launch to first /odom", lambda: launch_to_first_odom(plan, processes))
     results["machine"]["load_average_at_end"] = os.getloadavg()[0]
+    ticks, stolen = (end - start for end, start in zip(cpu_ticks(), ticks_at_start))
+    results["machine"]["stolen_cpu_share"] = stolen / ticks if ticks else 0.0
     results["targets"] = targets(results)
     print()
     print(table(results))

@@ -1,0 +1,136 @@
+"""A light TCPROS subscriber for the benchmark: it connects to a topic's publishers as rospy or roscpp would (the
+publisher sees an ordinary subscriber and writes it every message) but only splits the byte stream into messages,
+without a Python callback per message, so that the measuring process stays light on a 2-core machine.
+
+ROS 1 wire format: a connection header (4-byte length, then fields "key=value" each with a 4-byte length), answered
+by the publisher's header, then each message as a 4-byte little-endian length and the serialized bytes.
+"""
+from __future__ import annotations
+
+import selectors
+import socket
+import struct
+import threading
+import time
+import xmlrpc.client
+from typing import Callable, Dict, List, Optional
+
+_LENGTH = struct.Struct("<I")
+CONNECT_TIMEOUT_S = 10.0
+
+
+def _header(fields: Dict[str, str]) -> bytes:
+    items = [("%s=%s" % field).encode() for field in fields.items()]
+    body = b"".join(_LENGTH.pack(len(item)) + item for item in items)
+    return _LENGTH.pack(len(body)) + body
+
+
+def _read_exactly(sock: socket.socket, count: int) -> bytes:
+    data = b""
+    while len(data) < count:
+        chunk = sock.recv(count - len(data))
+        if not chunk:
+            raise ConnectionError("the publisher closed the connection during the handshake")
+        data += chunk
+    return data
+
+
+class TopicStream:
+    """One connection to one publisher of ``topic``: every message's arrival counted; the last one kept; each
+    message handed to ``on_message(wall_time, payload)`` if given (for topics that need every message)."""
+
+    def __init__(
+        self,
+        master_uri: str,
+        caller_id: str,
+        topic: str,
+        on_message: Optional[Callable[[float, bytes], None]] = None,
+    ) -> None:
+        self.topic = topic
+        self.count = 0
+        self.last: Optional[bytes] = None
+        self._on_message = on_message
+        self._buffer = b""
+        self.sock = self._connect(master_uri, caller_id)
+
+    def _connect(self, master_uri: str, caller_id: str) -> socket.socket:
+        master = xmlrpc.client.ServerProxy(master_uri)
+        _, _, (publishers, _, _) = master.getSystemState(caller_id)
+        nodes = next((nodes for name, nodes in publishers if name == self.topic), [])
+        if not nodes:
+            raise ConnectionError("%s has no publisher" % self.topic)
+        code, message, node_uri = master.lookupNode(caller_id, nodes[0])
+        if code != 1:
+            raise ConnectionError("%s: %s" % (nodes[0], message))
+        code, message, protocol = xmlrpc.client.ServerProxy(node_uri).requestTopic(caller_id, self.topic, [["TCPROS"]])
+        if code != 1:
+            raise ConnectionError("%s refused %s: %s" % (nodes[0], self.topic, message))
+        _, host, port = protocol
+        sock = socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S)
+        # md5sum and type "*": any type (rospy.AnyMsg asks the same way).
+        fields = {"callerid": caller_id, "topic": self.topic, "md5sum": "*", "type": "*", "tcp_nodelay": "1"}
+        sock.sendall(_header(fields))
+        answer = _read_exactly(sock, _LENGTH.unpack(_read_exactly(sock, 4))[0])
+        if b"error=" in answer:
+            raise ConnectionError("%s: %s" % (self.topic, answer))
+        sock.settimeout(None)
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 1 << 20)
+        return sock
+
+    def read(self) -> None:
+        """Take what has arrived (call when the socket is readable)."""
+        chunk = self.sock.recv(1 << 16)
+        if not chunk:
+            raise ConnectionError("%s: the publisher closed the connection" % self.topic)
+        now = time.monotonic()
+        data = self._buffer + chunk
+        offset, end = 0, len(data)
+        while end - offset >= 4:
+            (size,) = _LENGTH.unpack_from(data, offset)
+            if end - offset - 4 < size:
+                break
+            payload = data[offset + 4 : offset + 4 + size]
+            offset += 4 + size
+            self.count += 1
+            self.last = payload
+            if self._on_message is not None:
+                self._on_message(now, payload)
+        self._buffer = data[offset:]
+
+
+class Reader:
+    """Reads ``TopicStream``s in a thread of its own until ``close``."""
+
+    def __init__(self, streams: List[TopicStream]) -> None:
+        self.streams = streams
+        self.error: Optional[BaseException] = None
+        self._selector = selectors.DefaultSelector()
+        for stream in streams:
+            self._selector.register(stream.sock, selectors.EVENT_READ, stream)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        try:
+            while not self._stop.is_set():
+                for key, _ in self._selector.select(0.1):
+                    key.data.read()
+        except (OSError, ConnectionError) as error:
+            self.error = error
+
+    def counts(self) -> Dict[str, int]:
+        return {stream.topic: stream.count for stream in self.streams}
+
+    def close(self) -> None:
+        self._stop.set()
+        self._thread.join(5.0)
+        for stream in self.streams:
+            stream.sock.close()
+        self._selector.close()
+
+
+def clock_stamp(payload: bytes) -> float:
+    """rosgraph_msgs/Clock: seconds."""
+    secs, nsecs = struct.unpack("<2I", payload)
+    return secs + nsecs * 1e-9
