@@ -56,6 +56,7 @@ SETTLE_STEPS = 500
 ROBOT_SPACING_M = 3.0  # between spawn points: 1 m circles never meet
 ROBOTS_PER_ROW = 5
 STARTUP_TIMEOUT_S = 60.0
+READ_BATCH_S = 0.002  # the probe drains the simulator's topics every 2 ms (see tcpros_reader.Reader)
 
 
 @dataclass(frozen=True)
@@ -480,30 +481,37 @@ def measure_rtf_task(send: Callable[[Any], None], robots: int, warmup_s: float, 
 
     if not wait_until(lambda: set(topics) <= published(), STARTUP_TIMEOUT_S):
         raise BenchError("not published: %s" % sorted(set(topics) - published()))
-    streams = [
-        TopicStream(
-            rosgraph.get_master_uri(),
-            rospy.get_name(),
-            topic,
-            (lambda wall, payload: clock.append((wall, clock_stamp(payload)))) if topic == "/clock" else None,
-        )
-        for topic in topics
-    ]
-    reader = Reader(streams)
+
+    def on_clock(wall: float, payload: bytes) -> None:
+        clock.append((wall, clock_stamp(payload)))
+
+    # /clock on a reader of its own that wakes for each message, sent without delay (Nagle's algorithm would batch
+    # them), for its arrival times; the rest drained every READ_BATCH_S.
+    master_uri, caller_id = rosgraph.get_master_uri(), rospy.get_name()
+    clock_stream = TopicStream(master_uri, caller_id, "/clock", on_clock, tcp_nodelay=True)
+    streams = [TopicStream(master_uri, caller_id, topic) for topic in topics if topic != "/clock"]
+    readers = [Reader([clock_stream]), Reader(streams, READ_BATCH_S)]
+    streams.append(clock_stream)
+
+    def counts() -> Dict[str, int]:
+        return {stream.topic: stream.count for stream in streams}
+
     try:
-        if not wait_until(lambda: all(reader.counts().values()), STARTUP_TIMEOUT_S):
-            silent = sorted(topic for topic, count in reader.counts().items() if not count)
+        if not wait_until(lambda: all(counts().values()), STARTUP_TIMEOUT_S):
+            silent = sorted(topic for topic, count in counts().items() if not count)
             raise BenchError("no message on %s" % silent)
         simulator = node_pid("/gazebo")
         time.sleep(warmup_s)
-        start_counts, start, start_cpu = reader.counts(), time.monotonic(), cpu_seconds(simulator)
+        start_counts, start, start_cpu = counts(), time.monotonic(), cpu_seconds(simulator)
         time.sleep(window_s)
-        end_counts, end, end_cpu = reader.counts(), time.monotonic(), cpu_seconds(simulator)
+        end_counts, end, end_cpu = counts(), time.monotonic(), cpu_seconds(simulator)
         last = {stream.topic: stream.last for stream in streams}
     finally:
-        reader.close()
-    if reader.error is not None:
-        raise BenchError("reading the topics failed: %s" % reader.error)
+        for reader in readers:
+            reader.close()
+    errors = [reader.error for reader in readers if reader.error is not None]
+    if errors:
+        raise BenchError("reading the topics failed: %s" % errors[0])
     window = [(wall, sim) for wall, sim in list(clock) if start <= wall <= end]
     if len(window) < 2:
         raise BenchError("only %d /clock messages in %.1f wall seconds" % (len(window), window_s))
