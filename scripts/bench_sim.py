@@ -162,19 +162,14 @@ class BarePyOde:
         import ode
         from turtle_sim_ode import ode_constants
         from turtle_sim_ode.model_builder import compose, inverse
-        from turtle_sim_ode.physics import combine_surfaces
+        from turtle_sim_ode.physics import combine_surfaces, configure_world
 
         physics, model = sim.physics, sim.models[MODEL]
         params = physics.params
         self.time_step = params.time_step
         self.world = ode.World()
         _BARE_WORLDS.append(self.world)
-        self.world.setGravity(tuple(params.gravity))
-        self.world.setERP(params.erp)
-        self.world.setCFM(params.cfm)
-        self.world.setQuickStepNumIterations(params.solver_iterations)
-        self.world.setContactMaxCorrectingVel(params.contact_max_correcting_vel)
-        self.world.setContactSurfaceLayer(params.contact_surface_layer)
+        configure_world(self.world, params)
         self.ground = ode.GeomPlane(None, (0.0, 0.0, 1.0), 0.0)
         self.bodies = {}
         for body in model.bodies:
@@ -231,20 +226,11 @@ class BarePyOde:
         world.quickStep(self.time_step)
 
 
-def fit_circle(points: Sequence[Sequence[float]]) -> float:
-    """Radius of the least-squares (Kasa) circle through (x, y) points."""
-    n = len(points)
-    mean_x = sum(p[0] for p in points) / n
-    mean_y = sum(p[1] for p in points) / n
-    u = [(p[0] - mean_x, p[1] - mean_y) for p in points]
-    suu = sum(a * a for a, _ in u)
-    svv = sum(b * b for _, b in u)
-    suv = sum(a * b for a, b in u)
-    r1 = sum(a * (a * a + b * b) for a, b in u) / 2
-    r2 = sum(b * (a * a + b * b) for a, b in u) / 2
-    det = suu * svv - suv * suv
-    centre_u, centre_v = (r1 * svv - r2 * suv) / det, (r2 * suu - r1 * suv) / det
-    return math.sqrt(centre_u * centre_u + centre_v * centre_v + (suu + svv) / n)
+def circle_radius(points: Sequence[Sequence[float]]) -> float:
+    """Radius of the least-squares circle through (x, y) points."""
+    from turtle_sim_ode.path_fit import fit_circle
+
+    return fit_circle(points)[1]
 
 
 def circle_track(seconds: float) -> List[Tuple[float, float]]:
@@ -295,7 +281,7 @@ def physics_only(plan: Plan) -> Dict[str, Any]:
             "us_per_step": 1e6 / python_contacts,
             "rtf": python_contacts * dt,
         },
-        "circle_radius_m": fit_circle(circle_track(plan.circle_seconds)),
+        "circle_radius_m": circle_radius(circle_track(plan.circle_seconds)),
         "circle_expected_radius_m": CIRCLE[0] / CIRCLE[1],
     }
 
@@ -395,10 +381,10 @@ def _probe_main(connection: Any, ros_env: Dict[str, str], task: Callable[..., No
     try:
         import rospy
 
+        from turtle_sim_ode.ros_node import stop_hearing_own_clock
+
         rospy.init_node("bench_sim_probe", anonymous=True, disable_signals=True)
-        clock_subscriber = getattr(rospy.impl.simtime, "_clock_sub", None)
-        if clock_subscriber is not None:  # /use_sim_time: the probe times with the wall clock and reads /clock itself
-            clock_subscriber.unregister()
+        stop_hearing_own_clock()  # /use_sim_time: the probe times with the wall clock and reads /clock itself
         task(lambda value: connection.send(("value", value)), *args)
     except BenchError as error:
         connection.send(("error", str(error)))
@@ -740,7 +726,7 @@ def peer(plan: Plan, ours: Dict[str, Any], log_dir: str) -> Dict[str, Any]:
         "ratio_to_ours": measured["steps_per_s"] / ours["steps_per_s"],
         "contacts_per_step": measured["contacts_per_step"],
         "collision_shapes": measured["collision_shapes"],
-        "circle_radius_m": fit_circle(measured["track_xy"]),
+        "circle_radius_m": circle_radius(measured["track_xy"]),
         "ours_circle_radius_m": ours["circle_radius_m"],
         "circle_expected_radius_m": CIRCLE[0] / CIRCLE[1],
         "notes": measured["notes"],

@@ -7,6 +7,7 @@ the library is not built or cannot be loaded (``ContactKernel.load`` returns Non
 from __future__ import annotations
 
 import ctypes
+import functools
 import os
 import struct
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
@@ -84,22 +85,16 @@ def _declare(lib: ctypes.CDLL) -> ctypes.CDLL:
     return lib
 
 
-_LIB: Optional[ctypes.CDLL] = None
-_LIB_SEARCHED = False
-
-
+@functools.lru_cache(maxsize=None)
 def library() -> Optional[ctypes.CDLL]:
     """The loaded kernel library, or None if it is not built (searched once)."""
-    global _LIB, _LIB_SEARCHED
-    if not _LIB_SEARCHED:
-        _LIB_SEARCHED = True
-        found = _find_library()
-        if found is not None:
-            try:
-                _LIB = _declare(found)
-            except AttributeError:  # an old build without every function
-                _LIB = None
-    return _LIB
+    found = _find_library()
+    if found is None:
+        return None
+    try:
+        return _declare(found)
+    except AttributeError:  # an old build without every function
+        return None
 
 
 def _ids(values: Sequence[int]) -> ctypes.Array:
@@ -130,7 +125,7 @@ class ContactKernel:
     def set_tables(
         self,
         geoms: Dict[int, Tuple[int, bool]],
-        pair_surfaces: Sequence[PairSurface],
+        pair_surfaces: Sequence[Sequence[PairSurface]],
         excluded: Iterable[Tuple[int, int]],
         ground: int,
         ground_tests: Sequence[int],
@@ -138,7 +133,7 @@ class ContactKernel:
         self_colliding: Sequence[int],
         max_contacts: int,
     ) -> None:
-        """``geoms``: geom id -> (surface index, watched); ``pair_surfaces``: the S x S table, row-major, of the
+        """``geoms``: geom id -> (surface index, watched); ``pair_surfaces``: the S x S table (rows) of the
         surfaces of index pairs; ``excluded``: body id pairs that never collide; ``ground_tests``: geom ids tested
         against the plane ``ground``, in order; then the spaces collided: ``top_space`` and the ``self_colliding``
         model spaces; at most ``max_contacts`` contact joints a pair (but line contacts, merged)."""
@@ -147,10 +142,10 @@ class ContactKernel:
         ids = _ids(list(geoms))
         surfaces = (ctypes.c_int * max(1, count))(*(surface for surface, _ in geoms.values()))
         watched = (ctypes.c_ubyte * max(1, count))(*(int(flag) for _, flag in geoms.values()))
-        side = int(round(len(pair_surfaces) ** 0.5))
-        if side * side != len(pair_surfaces) or side < 1:
-            raise ValueError("pair surface table of %d entries is not square" % len(pair_surfaces))
-        table = (_PairSurface * len(pair_surfaces))(*(_PairSurface(*entry) for entry in pair_surfaces))
+        side = len(pair_surfaces)
+        if side < 1 or any(len(row) != side for row in pair_surfaces):
+            raise ValueError("the pair surface table is not square: %s rows" % side)
+        table = (_PairSurface * (side * side))(*(_PairSurface(*entry) for row in pair_surfaces for entry in row))
         pairs = [body for pair in excluded for body in pair]
         results = (
             lib.tso_kernel_set_geoms(handle, count, ids, surfaces, watched),

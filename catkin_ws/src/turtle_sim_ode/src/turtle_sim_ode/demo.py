@@ -43,10 +43,7 @@ def demo_settings(params: Mapping[str, Any]) -> DemoSettings:
 
 class CircleDemo:
     def __init__(self, settings: DemoSettings) -> None:
-        self.linear = settings.linear
-        self.angular = settings.angular
-        self.duration = settings.duration
-        self.output = settings.output
+        self.settings = settings
         self.odom: List[Tuple[float, float]] = []
         self.truth: List[Tuple[float, float]] = []
         self._lock = threading.Lock()
@@ -61,14 +58,14 @@ class CircleDemo:
     def run(self) -> str:
         rospy.wait_for_message("odom", Odometry, timeout=30)
         twist = Twist()
-        twist.linear.x, twist.angular.z = self.linear, self.angular
+        twist.linear.x, twist.angular.z = self.settings.linear, self.settings.angular
         start_sim, start_wall = rospy.Time.now(), time.monotonic()
         rate = rospy.Rate(10)
         interactive = sys.stdout.isatty()
         last_line = 0.0
         while not rospy.is_shutdown():
             elapsed = (rospy.Time.now() - start_sim).to_sec()
-            if elapsed >= self.duration:
+            if elapsed >= self.settings.duration:
                 break
             self._cmd.publish(twist)
             wall = time.monotonic() - start_wall
@@ -94,8 +91,12 @@ class CircleDemo:
             sys.stdout.write("\n")
         with self._lock:
             paths = {"wheel odometry (/odom)": list(self.odom), "ground truth": list(self.truth)}
-        title = "circle v=%.2f m/s, w=%.2f rad/s, %.1f s of sim time" % (self.linear, self.angular, self.duration)
-        return plot_paths(paths, self.output, title)
+        title = "circle v=%.2f m/s, w=%.2f rad/s, %.1f s of sim time" % (
+            self.settings.linear,
+            self.settings.angular,
+            self.settings.duration,
+        )
+        return plot_paths(paths, self.settings.output, title)
 
 
 def main() -> int:

@@ -89,6 +89,16 @@ def combine_surfaces(a: SurfaceParams, b: SurfaceParams, time_step: float) -> Co
     return (_CONTACT_MODE, min(a.mu, b.mu), min(a.mu2, b.mu2), time_step * kp / denominator, 1.0 / denominator)
 
 
+def configure_world(world: ode.World, params: "PhysicsParams") -> None:
+    """Gravity and the solver's world-wide settings of ``params`` on an ODE world."""
+    world.setGravity(tuple(params.gravity))
+    world.setERP(params.erp)
+    world.setCFM(params.cfm)
+    world.setQuickStepNumIterations(params.solver_iterations)
+    world.setContactMaxCorrectingVel(params.contact_max_correcting_vel)
+    world.setContactSurfaceLayer(params.contact_surface_layer)
+
+
 @dataclass
 class PhysicsParams:
     """World-wide solver and contact settings."""
@@ -216,7 +226,7 @@ class PhysicsWorld:
         self.world = ode.World()
         _WORLDS_KEPT_ALIVE.append(self.world)
         seed_ode_random()
-        self._configure_world()
+        configure_world(self.world, self.params)
         self.space = ode.HashSpace()
         self.ground = ode.GeomPlane(None, (0.0, 0.0, 1.0), 0.0)
         # Contact joints live until the next step; dropping a wrapper destroys its joint.
@@ -268,15 +278,6 @@ class PhysicsWorld:
         seed_ode_random()
 
     # --- settings ------------------------------------------------------------------
-    def _configure_world(self) -> None:
-        p = self.params
-        self.world.setGravity(tuple(p.gravity))
-        self.world.setERP(p.erp)
-        self.world.setCFM(p.cfm)
-        self.world.setQuickStepNumIterations(p.solver_iterations)
-        self.world.setContactMaxCorrectingVel(p.contact_max_correcting_vel)
-        self.world.setContactSurfaceLayer(p.contact_surface_layer)
-
     def set_params(self, params: PhysicsParams) -> None:
         """Switch to new settings between steps (ValueError if invalid, nothing changed).
 
@@ -286,7 +287,7 @@ class PhysicsWorld:
         params.validate()
         self._time_base, self._steps = self.sim_time, 0
         self.params = params
-        self._configure_world()
+        configure_world(self.world, self.params)
         self._stepper = self.world.quickStep if params.solver == "quick" else self.world.step
         self._surfaces[self.ground] = params.ground_surface
         self._pair_cache.clear()
@@ -452,7 +453,7 @@ class PhysicsWorld:
             self._body_ids[body] = kernel.body_id(body)
         kernel.set_tables(
             geoms,
-            [combine_surfaces(a, b, self.time_step) for a in surfaces for b in surfaces],
+            [[combine_surfaces(a, b, self.time_step) for b in surfaces] for a in surfaces],
             [(self._body_ids[a], self._body_ids[b]) for a, b in self._jointed],
             self.ground._id(),
             [geom._id() for geom, _, _ in self._ground_tests],

@@ -8,6 +8,7 @@ import math
 import pytest
 
 from conftest import TurtleSim, yaw_of
+from turtle_sim_ode.path_fit import fit_circle
 
 
 @pytest.fixture(params=["quick", "world"])
@@ -18,22 +19,6 @@ def solver(request):
 def speed(sim):
     linear, _ = sim.model.link_twist("base_footprint")
     return math.hypot(linear[0], linear[1])
-
-
-def fit_circle(points):
-    """Least-squares (Kasa) circle through (x, y) points: centre and radius."""
-    n = len(points)
-    sx = sum(p[0] for p in points) / n
-    sy = sum(p[1] for p in points) / n
-    u = [(p[0] - sx, p[1] - sy) for p in points]
-    suu = sum(a * a for a, _ in u)
-    svv = sum(b * b for _, b in u)
-    suv = sum(a * b for a, b in u)
-    r1 = sum(a * (a * a + b * b) for a, b in u) / 2
-    r2 = sum(b * (a * a + b * b) for a, b in u) / 2
-    det = suu * svv - suv * suv
-    uc, vc = (r1 * svv - r2 * suv) / det, (r2 * suu - r1 * suv) / det
-    return (sx + uc, sy + vc), math.sqrt(uc * uc + vc * vc + (suu + svv) / n)
 
 
 def test_straight_line(solver):
