@@ -125,7 +125,7 @@ def cpu_ticks() -> Tuple[int, int]:
 def turtlebot_simulation(contact_kernel: bool = True) -> Any:
     """A Simulation (default physics) with the TurtleBot as MODEL, its drive commanded CIRCLE with no timeout;
     ``contact_kernel`` False collides in Python instead of the compiled kernel."""
-    from turtle_sim_ode.simulation import Simulation
+    from turtle_sim_ode.world.simulation import Simulation
 
     sim = Simulation(contact_kernel=contact_kernel)
     with open(URDF_PATH) as urdf:
@@ -160,9 +160,9 @@ class BarePyOde:
 
     def __init__(self, sim: Any) -> None:
         import ode
-        from turtle_sim_ode import ode_constants
-        from turtle_sim_ode.model_builder import compose, inverse
-        from turtle_sim_ode.physics import combine_surfaces, configure_world
+        from turtle_sim_ode.physics import ode_constants
+        from turtle_sim_ode.models.builder import compose, inverse
+        from turtle_sim_ode.physics.world import combine_surfaces, configure_world
 
         physics, model = sim.physics, sim.models[MODEL]
         params = physics.params
@@ -228,7 +228,7 @@ class BarePyOde:
 
 def circle_radius(points: Sequence[Sequence[float]]) -> float:
     """Radius of the least-squares circle through (x, y) points."""
-    from turtle_sim_ode.path_fit import fit_circle
+    from turtle_sim_ode.analysis.path_fit import fit_circle
 
     return fit_circle(points)[1]
 
@@ -381,7 +381,7 @@ def _probe_main(connection: Any, ros_env: Dict[str, str], task: Callable[..., No
     try:
         import rospy
 
-        from turtle_sim_ode.ros_node import stop_hearing_own_clock
+        from turtle_sim_ode.ros.node import stop_hearing_own_clock
 
         rospy.init_node("bench_sim_probe", anonymous=True, disable_signals=True)
         stop_hearing_own_clock()  # /use_sim_time: the probe times with the wall clock and reads /clock itself

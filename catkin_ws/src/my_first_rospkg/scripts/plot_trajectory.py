@@ -7,7 +7,7 @@ import argparse
 import sys
 
 from my_first_rospkg.bag_paths import read_paths
-from turtle_sim_ode.trajectory_plot import plot_paths
+from turtle_sim_ode.analysis.trajectory_plot import plot_paths
 
 
 def main() -> int:

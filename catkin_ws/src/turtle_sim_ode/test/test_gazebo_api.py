@@ -9,11 +9,11 @@ import unittest
 import rosgraph
 import rospy
 import rostest
-from rosgraph_msgs.msg import Clock, Log
 from gazebo_msgs import srv as gz
 from gazebo_msgs.msg import LinkState, ModelState, ModelStates, ODEJointProperties
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
 from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock, Log
 from std_srvs.srv import Empty
 
 MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")

@@ -14,7 +14,7 @@ import numpy as np
 import rospy
 import rostest
 
-from turtle_sim_ode.xwd_image import read_xwd
+from turtle_sim_ode.analysis.xwd_image import read_xwd
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

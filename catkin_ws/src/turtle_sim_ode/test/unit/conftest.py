@@ -9,8 +9,8 @@ from typing import List, Optional, Tuple
 PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(PACKAGE_ROOT / "src"))
 
-from turtle_sim_ode.physics import PhysicsParams  # noqa: E402
-from turtle_sim_ode.simulation import Simulation  # noqa: E402
+from turtle_sim_ode.physics.world import PhysicsParams  # noqa: E402
+from turtle_sim_ode.world.simulation import Simulation
 
 TURTLEBOT_URDF = (PACKAGE_ROOT / "urdf" / "turtlebot.urdf").read_text()
 COMMAND_PERIOD = 0.1  # cmd_vel arrives at 10 Hz

@@ -6,9 +6,9 @@ the quickstep solver (Gazebo's default, 50 iterations) and the exact 'world' sol
 import math
 
 import pytest
-
 from conftest import TurtleSim, yaw_of
-from turtle_sim_ode.path_fit import fit_circle
+
+from turtle_sim_ode.analysis.path_fit import fit_circle
 
 
 @pytest.fixture(params=["quick", "world"])

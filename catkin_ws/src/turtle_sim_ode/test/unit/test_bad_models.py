@@ -9,11 +9,11 @@ import time
 
 import pytest
 
-from turtle_sim_ode.sdf_model import model_format, parse_sdf_model
-from turtle_sim_ode.settings import SettingsError, settings_from_params
-from turtle_sim_ode.simulation import Simulation
-from turtle_sim_ode.urdf_model import MAX_COLLISIONS, MAX_LINKS, ModelError, parse_urdf
-from turtle_sim_ode.world_control import WorldError, orientation
+from turtle_sim_ode.models.sdf import model_format, parse_sdf_model
+from turtle_sim_ode.models.urdf import MAX_COLLISIONS, MAX_LINKS, ModelError, parse_urdf
+from turtle_sim_ode.ros.settings import SettingsError, settings_from_params
+from turtle_sim_ode.world.simulation import Simulation
+from turtle_sim_ode.world.values import WorldError, orientation
 
 INERTIAL = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01"/></inertial>'
 COLLISION = '<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>'

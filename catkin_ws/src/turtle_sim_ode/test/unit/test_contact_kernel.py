@@ -9,11 +9,11 @@ from typing import Callable, List, Tuple
 
 import ode
 import pytest
-
 from conftest import TURTLEBOT_URDF
-from turtle_sim_ode import contact_kernel
-from turtle_sim_ode.physics import PhysicsParams, PhysicsWorld, SurfaceParams, seed_ode_random
-from turtle_sim_ode.simulation import Simulation
+
+from turtle_sim_ode.physics import contact_kernel
+from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams, seed_ode_random
+from turtle_sim_ode.world.simulation import Simulation
 
 Trace = List[Tuple]
 

@@ -4,8 +4,8 @@ import os
 
 import pytest
 
-from turtle_sim_ode.demo import MAX_DURATION_S, demo_settings
-from turtle_sim_ode.settings import SettingsError
+from turtle_sim_ode.ros.demo import MAX_DURATION_S, demo_settings
+from turtle_sim_ode.ros.settings import SettingsError
 
 
 def test_defaults_drive_one_turn():

@@ -3,8 +3,8 @@ import math
 
 import pytest
 
-from turtle_sim_ode import ode_constants as oc
-from turtle_sim_ode.diff_drive import DiffDriveController, DiffDriveParams, WheelOdometry
+from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.world.diff_drive import DiffDriveController, DiffDriveParams, WheelOdometry
 
 
 class RecordingHinge:

@@ -3,12 +3,12 @@ import gc
 import math
 
 import pytest
-
 from conftest import TURTLEBOT_URDF
-from turtle_sim_ode import ode_constants as oc
-from turtle_sim_ode.model_builder import build_model
-from turtle_sim_ode.physics import PhysicsParams, PhysicsWorld, SurfaceParams
-from turtle_sim_ode.urdf_model import ModelError, parse_urdf
+
+from turtle_sim_ode.models.builder import build_model
+from turtle_sim_ode.models.urdf import ModelError, parse_urdf
+from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams
 
 NO_GRAVITY = PhysicsParams(gravity=(0.0, 0.0, 0.0))
 BOX = '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'

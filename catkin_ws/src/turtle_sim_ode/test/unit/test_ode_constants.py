@@ -5,7 +5,7 @@ from pathlib import Path
 import ode
 import pytest
 
-from turtle_sim_ode import ode_constants as oc
+from turtle_sim_ode.physics import ode_constants as oc
 
 COMMON_H = Path("/usr/include/ode/common.h")
 PARAM_NAMES = [

@@ -4,7 +4,7 @@ import math
 import ode
 import pytest
 
-from turtle_sim_ode.physics import PhysicsParams, PhysicsWorld, SurfaceParams, combine_surfaces
+from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams, combine_surfaces
 
 
 @pytest.mark.parametrize(

@@ -3,12 +3,11 @@ import math
 from pathlib import Path
 
 import pytest
-
-from turtle_sim_ode.plugins import DIFF_DRIVE, IMU, KOBUKI, P3D, find_body, read_plugins
-from turtle_sim_ode.sensors import ImuNoise
-from turtle_sim_ode.urdf_model import GazeboPlugin, ModelError, parse_urdf
-
 from conftest import TURTLEBOT_URDF
+
+from turtle_sim_ode.models.urdf import GazeboPlugin, ModelError, parse_urdf
+from turtle_sim_ode.sensors.config import ImuNoise
+from turtle_sim_ode.world.plugins import DIFF_DRIVE, IMU, KOBUKI, P3D, find_body, read_plugins
 
 BURGER_URDF = (Path(__file__).resolve().parents[1] / "models" / "burger.urdf").read_text()
 

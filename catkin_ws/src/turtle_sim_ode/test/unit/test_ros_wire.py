@@ -13,7 +13,7 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu, JointState, LaserScan
 from tf2_msgs.msg import TFMessage
 
-from turtle_sim_ode import ros_wire
+from turtle_sim_ode.ros import wire as ros_wire
 
 RNG = random.Random(8)
 SEQ, SECS, NSECS = 42, 3, 999999999

@@ -4,13 +4,13 @@ import math
 import random
 
 import pytest
-
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
-from turtle_sim_ode import ode_constants as oc
-from turtle_sim_ode.model_builder import build_model, compose, inverse, pose_transform, quat_from_rpy
-from turtle_sim_ode.physics import PhysicsParams, PhysicsWorld, SurfaceParams
-from turtle_sim_ode.sdf_model import PLANE_THICKNESS, Include, parse_sdf_model, parse_sdf_world
-from turtle_sim_ode.urdf_model import Box, GazeboSurface, ModelError, Pose, parse_urdf
+
+from turtle_sim_ode.models.builder import build_model, compose, inverse, pose_transform, quat_from_rpy
+from turtle_sim_ode.models.sdf import PLANE_THICKNESS, Include, parse_sdf_model, parse_sdf_world
+from turtle_sim_ode.models.urdf import Box, GazeboSurface, ModelError, Pose, parse_urdf
+from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams
 
 NO_GRAVITY = PhysicsParams(gravity=(0.0, 0.0, 0.0))
 WORLDS = PACKAGE_ROOT / "worlds"

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import re
 import random
+import re
 import statistics
 import time
 from typing import List, Tuple
@@ -12,8 +12,11 @@ from typing import List, Tuple
 import pytest
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF, TurtleSim
 
-from turtle_sim_ode import sensors
-from turtle_sim_ode.sensors import (
+from turtle_sim_ode.models.urdf import ModelError
+from turtle_sim_ode.sensors import laser as sensors
+from turtle_sim_ode.sensors.config import LaserConfig, read_sdf_sensors, read_sensors
+from turtle_sim_ode.sensors.imu import ImuSensor
+from turtle_sim_ode.sensors.kobuki import (
     CENTER,
     CLIFF,
     FLOOR,
@@ -23,15 +26,10 @@ from turtle_sim_ode.sensors import (
     RIGHT,
     BumperSensor,
     CliffSensor,
-    ImuSensor,
-    LaserConfig,
-    LaserScanner,
     bumper_of,
-    read_sdf_sensors,
-    read_sensors,
 )
-from turtle_sim_ode.simulation import Simulation
-from turtle_sim_ode.urdf_model import ModelError
+from turtle_sim_ode.sensors.laser import LaserScanner
+from turtle_sim_ode.world.simulation import Simulation
 
 BOX_URDF = (PACKAGE_ROOT / "test" / "models" / "box.urdf").read_text()  # 0.2 m cube, 1 kg
 LASER_BLOCK = """
@@ -181,14 +179,14 @@ def test_models_out_of_reach_are_skipped_whole(monkeypatch: pytest.MonkeyPatch) 
     near = {geom for geoms in sim.sim.models["near"].geoms.values() for geom in geoms}
     far = {geom for geoms in sim.sim.models["far"].geoms.values() for geom in geoms}
     tested: List[object] = []
-    world_geoms = sensors._world_geoms
+    world_geoms = sensors.world_geoms
 
     def recording(*args):  # type: ignore[no-untyped-def]
         for geom in world_geoms(*args):
             tested.append(geom)
             yield geom
 
-    monkeypatch.setattr(sensors, "_world_geoms", recording)
+    monkeypatch.setattr(sensors, "world_geoms", recording)
     # Level (AABB footprint culling) and tilted (bounding spheres): the near robot is seen, the far one never tested.
     for pitch in (0.0, 0.02):
         config = laser_config(pose=(0.0, 0.0, 0.05 - SCAN_HEIGHT, 0.0, pitch, 0.0))
@@ -287,7 +285,7 @@ def test_imu_yaw_rate_matches_a_commanded_spin() -> None:
 
 
 def test_imu_noise_sets_covariances() -> None:
-    from turtle_sim_ode.sensors import ImuNoise
+    from turtle_sim_ode.sensors.config import ImuNoise
 
     sim = TurtleSim()
     imu = ImuSensor(sim.model, "imu_link", noise=ImuNoise(0.01, 0.02, 0.1), rng=random.Random(1))

@@ -1,7 +1,7 @@
 """The simulator node's parameters are checked before anything starts: each bad value is named."""
 import pytest
 
-from turtle_sim_ode.settings import SettingsError, settings_from_params
+from turtle_sim_ode.ros.settings import SettingsError, settings_from_params
 
 
 def test_defaults_match_the_documented_ones():

@@ -2,12 +2,11 @@
 import math
 
 import pytest
-
-from turtle_sim_ode.simulation import Simulation
-from turtle_sim_ode.urdf_model import ModelError
-from turtle_sim_ode.world_control import WorldError
-
 from conftest import TURTLEBOT_URDF
+
+from turtle_sim_ode.models.urdf import ModelError
+from turtle_sim_ode.world.simulation import Simulation
+from turtle_sim_ode.world.values import WorldError
 
 BOX_URDF = """<robot name="box"><link name="box"><inertial><mass value="1"/>
 <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>

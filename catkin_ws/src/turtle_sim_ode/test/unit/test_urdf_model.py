@@ -1,8 +1,8 @@
 """URDF parsing into dataclasses and every validation error."""
 import pytest
-
 from conftest import TURTLEBOT_URDF
-from turtle_sim_ode.urdf_model import MAX_LINKS, Box, Cylinder, GazeboSurface, ModelError, Sphere, parse_urdf
+
+from turtle_sim_ode.models.urdf import MAX_LINKS, Box, Cylinder, GazeboSurface, ModelError, Sphere, parse_urdf
 
 INERTIA = '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
 

@@ -2,14 +2,15 @@
 import math
 
 import pytest
-
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
-from turtle_sim_ode import ode_constants as oc
-from turtle_sim_ode.physics import PhysicsParams
-from turtle_sim_ode.sdf_model import parse_sdf_world
-from turtle_sim_ode.simulation import Simulation
-from turtle_sim_ode.urdf_model import ModelError
-from turtle_sim_ode.world_control import CONTINUOUS, PRISMATIC, REVOLUTE, WorldError
+
+from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.urdf import ModelError
+from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics.world import PhysicsParams
+from turtle_sim_ode.world.control import CONTINUOUS, PRISMATIC, REVOLUTE
+from turtle_sim_ode.world.simulation import Simulation
+from turtle_sim_ode.world.values import WorldError
 
 NO_GRAVITY = PhysicsParams(gravity=(0.0, 0.0, 0.0))
 YAW_90 = (0.0, 0.0, math.sqrt(0.5), math.sqrt(0.5))  # (x, y, z, w)

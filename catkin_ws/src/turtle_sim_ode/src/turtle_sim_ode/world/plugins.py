@@ -6,9 +6,10 @@ import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Mapping, Optional, Tuple
 
-from .diff_drive import DiffDriveParams
-from .sensors import KOBUKI_CLIFF_THRESHOLD, ContactConfig, ImuConfig, LaserConfig, imu_config
-from .urdf_model import GazeboPlugin, ModelError
+from turtle_sim_ode.models.urdf import GazeboPlugin, ModelError
+from turtle_sim_ode.sensors.config import ContactConfig, ImuConfig, LaserConfig, imu_config
+from turtle_sim_ode.sensors.kobuki import KOBUKI_CLIFF_THRESHOLD
+from turtle_sim_ode.world.diff_drive import DiffDriveParams
 
 KOBUKI = "libgazebo_ros_kobuki.so"
 DIFF_DRIVE = "libgazebo_ros_diff_drive.so"

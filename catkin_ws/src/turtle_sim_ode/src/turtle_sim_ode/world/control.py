@@ -10,13 +10,12 @@ a service's status_message, before anything in the world changes.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence, Tuple, TypedDict, Union
+from dataclasses import replace
+from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import ode
 
-from . import ode_constants as oc
-from .model_builder import (
+from turtle_sim_ode.models.builder import (
     BuiltModel,
     JointHandle,
     Quat,
@@ -28,13 +27,32 @@ from .model_builder import (
     quat_multiply,
     quat_rotate,
 )
-from .physics import MAX_GRAVITY, PhysicsWorld
-from .urdf_model import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
+from turtle_sim_ode.models.urdf import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
+from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsWorld
+from turtle_sim_ode.world.records import (
+    JointProperties,
+    LinkProperties,
+    Load,
+    ModelProperties,
+    OdeConfig,
+    PhysicsProperties,
+    QuatXYZW,
+    WorldProperties,
+)
+from turtle_sim_ode.world.robot import DiffDriveRobot
+from turtle_sim_ode.world.values import (
+    MAX_FORCE,
+    MAX_SPEED,
+    WorldError,
+    finite,
+    integer,
+    orientation,
+    update_rate,
+    vec3,
+    vector,
+)
 
-if TYPE_CHECKING:
-    from .simulation import DiffDriveRobot
-
-QuatXYZW = Tuple[float, float, float, float]
 # position, orientation (x, y, z, w), linear velocity, angular velocity
 EntityState = Tuple[Vec3, QuatXYZW, Vec3, Vec3]
 # A reference frame's world pose, linear and angular velocity; None is the world.
@@ -54,11 +72,6 @@ JOINT_TYPES = {"revolute": REVOLUTE, "continuous": CONTINUOUS, "prismatic": PRIS
 SOR_PGS_W = 1.3
 # Tolerance on sim-time comparisons when scheduling loads (s).
 TIME_EPSILON = 1e-9
-# Limits on what a request may set, far beyond any robot's needs: positions within MAX_LENGTH (m) of the world
-# origin, speeds (m/s, rad/s) and forces (N, N m). Finite values beyond them make ODE abort the whole process
-# within a few steps (its collision grid takes coordinates below ~1e8 m; a 1e300 N push overflows).
-MAX_SPEED = 1e4
-MAX_FORCE = 1e6
 
 # gazebo_msgs/ODEJointProperties fields set with joint.setParam (first axis only).
 _JOINT_PARAMS = (
@@ -74,149 +87,6 @@ _JOINT_PARAMS = (
 )
 # Magnitude limits of the ODEJointProperties fields that drive a joint.
 _JOINT_LIMITS = {"fmax": MAX_FORCE, "vel": MAX_SPEED}
-
-
-class WorldError(ValueError):
-    """A world request names an unknown entity or carries a bad value; nothing was changed."""
-
-
-class OdeConfig(TypedDict):
-    """gazebo_msgs/ODEPhysics."""
-
-    auto_disable_bodies: bool
-    sor_pgs_precon_iters: int
-    sor_pgs_iters: int
-    sor_pgs_w: float
-    sor_pgs_rms_error_tol: float
-    contact_surface_layer: float
-    contact_max_correcting_vel: float
-    cfm: float
-    erp: float
-    max_contacts: int
-
-
-class PhysicsProperties(TypedDict):
-    """gazebo_msgs/GetPhysicsProperties without ``pause`` (which the node knows)."""
-
-    time_step: float
-    max_update_rate: float
-    gravity: Vec3
-    ode_config: OdeConfig
-
-
-class ModelProperties(TypedDict):
-    """gazebo_msgs/GetModelProperties."""
-
-    parent_model_name: str
-    canonical_body_name: str
-    body_names: List[str]
-    geom_names: List[str]
-    joint_names: List[str]
-    child_model_names: List[str]
-    is_static: bool
-
-
-class LinkProperties(TypedDict):
-    """gazebo_msgs/GetLinkProperties with ``com`` as a position and a quaternion (x, y, z, w)."""
-
-    com_position: Vec3
-    com_orientation: QuatXYZW
-    gravity_mode: bool
-    mass: float
-    ixx: float
-    ixy: float
-    ixz: float
-    iyy: float
-    iyz: float
-    izz: float
-
-
-class JointProperties(TypedDict):
-    """gazebo_msgs/GetJointProperties; ``type`` is one of its constants (REVOLUTE, ...)."""
-
-    type: int
-    damping: List[float]
-    position: List[float]
-    rate: List[float]
-
-
-class WorldProperties(TypedDict):
-    """gazebo_msgs/GetWorldProperties."""
-
-    sim_time: float
-    model_names: List[str]
-    rendering_enabled: bool
-
-
-@dataclass(frozen=True)
-class Load:
-    """A force added before every step whose start time is in [start, end) (at least one)."""
-
-    kind: str  # "wrench" (target "model::link") or "effort" (target: the joint's name)
-    model: str
-    target: str
-    apply: Callable[[], None]
-    start: float
-    end: float
-
-
-# --- values -------------------------------------------------------------------------------
-def finite(value: object, what: str, limit: float = math.inf) -> float:
-    """``value`` as a float; WorldError unless it is a finite number of magnitude at most ``limit``."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise WorldError(f"{what} must be a finite number, got {value!r}")
-    if abs(value) > limit:
-        raise WorldError(f"{what} must be at most {limit:g} in magnitude, got {value!r}")
-    return float(value)
-
-
-def vector(values: Any, size: int, what: str, limit: float = math.inf) -> Tuple[float, ...]:
-    """``size`` finite numbers, each of magnitude at most ``limit``, as a tuple of floats, or WorldError."""
-    try:
-        ok = len(values) == size and all(
-            not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v) for v in values
-        )
-    except TypeError:
-        ok = False
-    if not ok:
-        raise WorldError(f"{what} must be {size} finite numbers, got {values!r}")
-    if any(abs(v) > limit for v in values):
-        raise WorldError(f"{what} must be at most {limit:g} in magnitude on each axis, got {tuple(values)!r}")
-    return tuple(float(v) for v in values)
-
-
-def vec3(values: Any, what: str, limit: float = math.inf) -> Vec3:
-    """Three finite numbers of magnitude at most ``limit``, or WorldError."""
-    x, y, z = vector(values, 3, what, limit)
-    return (x, y, z)
-
-
-def orientation(quaternion: Sequence[float], what: str) -> Quat:
-    """Unit (w, x, y, z) from a ROS (x, y, z, w) quaternion; all zeros mean no rotation. Scaled before
-    squaring, so that huge components do not overflow to a zero quaternion."""
-    x, y, z, w = vector(quaternion, 4, what)
-    scale = max(abs(x), abs(y), abs(z), abs(w))
-    if scale == 0:
-        return (1.0, 0.0, 0.0, 0.0)
-    x, y, z, w = x / scale, y / scale, z / scale, w / scale
-    norm = math.sqrt(x * x + y * y + z * z + w * w)
-    if norm * scale < 1e-10:
-        return (1.0, 0.0, 0.0, 0.0)
-    return (w / norm, x / norm, y / norm, z / norm)
-
-
-def update_rate(value: object, what: str) -> float:
-    """A max_update_rate: finite and >= 0 (0 = as fast as possible)."""
-    rate = finite(value, what)
-    if rate < 0:
-        raise WorldError(f"{what} must be >= 0, got {rate}")
-    return rate
-
-
-def _integer(value: object, what: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise WorldError(f"{what} must be an integer, got {value!r}")
-    return value
 
 
 def _add(a: Vec3, b: Vec3) -> Vec3:
@@ -612,7 +482,7 @@ class WorldControl:
         ode_config.sor_pgs_iters. Returns warnings for the ode_config settings the simulator
         keeps fixed (auto-disable, preconditioning, SOR factor, RMS tolerance)."""
         rate = update_rate(max_update_rate, "max_update_rate")
-        _integer(sor_pgs_precon_iters, "sor_pgs_precon_iters")
+        integer(sor_pgs_precon_iters, "sor_pgs_precon_iters")
         finite(sor_pgs_w, "sor_pgs_w")
         finite(sor_pgs_rms_error_tol, "sor_pgs_rms_error_tol")
         params = replace(

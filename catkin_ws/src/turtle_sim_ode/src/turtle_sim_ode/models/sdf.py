@@ -16,8 +16,8 @@ from xml.etree.ElementTree import Element, ParseError
 import defusedxml
 import defusedxml.ElementTree as SafeET
 
-from .model_builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
-from .urdf_model import (
+from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
+from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
     MAX_URDF_CHARS,
     MESH_PLACEHOLDER_EDGE,
@@ -48,7 +48,7 @@ from .urdf_model import (
 )
 
 if TYPE_CHECKING:
-    from .physics import PhysicsParams
+    from turtle_sim_ode.physics.world import PhysicsParams
 
 Version = Tuple[int, int]
 

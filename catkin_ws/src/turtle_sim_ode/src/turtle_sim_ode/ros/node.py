@@ -14,18 +14,19 @@ from typing import Dict, List, Optional
 
 import rospkg
 import rospy
-from rospy.impl import simtime
 from rosgraph_msgs.msg import Clock
+from rospy.impl import simtime
 from tf2_msgs.msg import TFMessage
 from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepSimulationResponse
 
-from .gazebo_api import GazeboApi
-from .settings import SettingsError, SimulatorSettings, settings_from_params
-from .sdf_model import parse_sdf_world
-from .ros_plugins import Periodic, model_interfaces, sim_stamp
-from .ros_wire import ClockPacker, PackedPublisher, release, stamp_parts
-from .simulation import Simulation, WorldError
-from .urdf_model import ModelError
+from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.urdf import ModelError
+from turtle_sim_ode.ros.gazebo_api import GazeboApi
+from turtle_sim_ode.ros.plugin_topics import Periodic, model_interfaces, sim_stamp
+from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
+from turtle_sim_ode.ros.wire import ClockPacker, PackedPublisher, release, stamp_parts
+from turtle_sim_ode.world.simulation import Simulation
+from turtle_sim_ode.world.values import WorldError
 
 # One /gazebo/step_simulation call holds the world for at most this many steps (about a minute of wall time).
 MAX_LOCKSTEP_STEPS = 1000000

@@ -7,9 +7,9 @@ from typing import Any, Dict, Mapping, Tuple
 
 from rosgraph.names import is_legal_base_name
 
-from .diff_drive import DiffDriveParams
-from .physics import MAX_GRAVITY, PhysicsParams
-from .urdf_model import MAX_LENGTH
+from turtle_sim_ode.models.urdf import MAX_LENGTH
+from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsParams
+from turtle_sim_ode.world.diff_drive import DiffDriveParams
 
 # Parameters of physics.yaml, read into PhysicsParams (checked again by PhysicsParams.validate()).
 PHYSICS_PARAMS = (

@@ -11,15 +11,16 @@ import threading
 from typing import Callable, Sequence, Tuple
 
 import rospy
-from rosgraph.names import is_legal_base_name, is_legal_name
 from gazebo_msgs import srv as gz
 from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEJointProperties, ODEPhysics
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
+from rosgraph.names import is_legal_base_name, is_legal_name
 from std_srvs.srv import Empty, EmptyResponse
 
-from .sdf_model import model_format, parse_sdf_model
-from .simulation import Simulation, WorldError
-from .urdf_model import ModelError, parse_urdf
+from turtle_sim_ode.models.sdf import model_format, parse_sdf_model
+from turtle_sim_ode.models.urdf import ModelError, parse_urdf
+from turtle_sim_ode.world.simulation import Simulation
+from turtle_sim_ode.world.values import WorldError
 
 Vec3 = Tuple[float, float, float]
 State = Tuple[Vec3, Tuple[float, float, float, float], Vec3, Vec3]

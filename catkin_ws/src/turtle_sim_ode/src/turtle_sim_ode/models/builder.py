@@ -7,9 +7,9 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import ode
 
-from . import ode_constants as oc
-from .physics import PhysicsWorld, SurfaceParams
-from .urdf_model import MAX_LENGTH, Box, Cylinder, Geometry, Joint, ModelError, Pose, RobotModel, Sphere
+from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, ModelError, Pose, RobotModel, Sphere
+from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics.world import PhysicsWorld, SurfaceParams
 
 Vec3 = Tuple[float, float, float]
 Quat = Tuple[float, float, float, float]  # (w, x, y, z) as ODE; only link_pose gives ROS's xyzw

@@ -10,17 +10,17 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 import ode
 import rospy
-from gazebo_msgs.msg import ContactState, ContactsState
+from gazebo_msgs.msg import ContactsState, ContactState
 from geometry_msgs.msg import Point, Twist, Vector3, Wrench
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_msgs.msg import Empty as EmptyMsg
 from turtle_sim_ode_msgs.msg import BumperEvent, CliffEvent
 
-from .model_builder import BuiltModel, quat_from_rpy, quat_multiply
-from .plugins import GroundTruthConfig, JointStatesConfig, find_body
-from .physics import PhysicsWorld
-from .ros_wire import (
+from turtle_sim_ode.models.builder import BuiltModel, quat_from_rpy, quat_multiply
+from turtle_sim_ode.physics.world import PhysicsWorld
+from turtle_sim_ode.ros.settings import SimulatorSettings
+from turtle_sim_ode.ros.wire import (
     ImuPacker,
     JointStatePacker,
     LaserScanPacker,
@@ -31,9 +31,13 @@ from .ros_wire import (
     release,
     stamp_parts,
 )
-from .sensors import BumperSensor, CliffSensor, ContactConfig, ImuConfig, ImuSensor, LaserScanner
-from .settings import SimulatorSettings
-from .simulation import DiffDriveRobot, Simulation
+from turtle_sim_ode.sensors.config import ContactConfig, ImuConfig
+from turtle_sim_ode.sensors.imu import ImuSensor
+from turtle_sim_ode.sensors.kobuki import BumperSensor, CliffSensor
+from turtle_sim_ode.sensors.laser import LaserScanner
+from turtle_sim_ode.world.plugins import GroundTruthConfig, JointStatesConfig, find_body
+from turtle_sim_ode.world.robot import DiffDriveRobot
+from turtle_sim_ode.world.simulation import Simulation
 
 # Diagonal covariances as the Kobuki driver reports them: x, y and yaw measured, the rest unknown.
 ODOM_POSE_COVARIANCE = [

@@ -5,7 +5,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Dict, Mapping, Tuple
 
-from . import ode_constants as oc
+from turtle_sim_ode.physics import ode_constants as oc
 
 if TYPE_CHECKING:  # only for annotations: odometry needs no ODE
     import ode

@@ -13,8 +13,8 @@ import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
-from .settings import SettingsError, number_param, typed_param
-from .trajectory_plot import plot_paths
+from turtle_sim_ode.analysis.trajectory_plot import plot_paths
+from turtle_sim_ode.ros.settings import SettingsError, number_param, typed_param
 
 # Beyond this the lap takes longer than anyone waits for a demo; a typo, more likely.
 MAX_DURATION_S = 3600.0

@@ -9,8 +9,8 @@ from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequenc
 
 import ode
 
-from . import ode_constants as oc
-from .contact_kernel import ContactKernel
+from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics.contact_kernel import ContactKernel
 
 SOLVERS = ("quick", "world")
 # Gravity (m/s² per axis) beyond which resting bodies tunnel through the ground and fall until ODE aborts (1e6 does).

@@ -1,46 +1,27 @@
 """ROS-free simulation: a PhysicsWorld with named models, the drive plugins found in them, and
-Gazebo's world API over them (see world_control)."""
+Gazebo's world API over them (see world.control)."""
 from __future__ import annotations
 
 import logging
 from dataclasses import dataclass
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-from .diff_drive import DiffDriveController, WheelOdometry
-from .model_builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
-from .physics import PhysicsParams, PhysicsWorld
-from .plugins import DriveConfig, ModelPlugins, read_plugins
-from .sensors import SensorBlocks, read_sdf_sensors, read_sensors
-from .sdf_model import World, _rpy, parse_sdf_model
-from .urdf_model import ModelError, RobotModel, parse_urdf
-from .world_control import SCOPE, WORLD_FRAMES, Load, QuatXYZW, WorldControl, WorldError, update_rate, vector
+from turtle_sim_ode.models.builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
+from turtle_sim_ode.models.sdf import World, _rpy, parse_sdf_model
+from turtle_sim_ode.models.urdf import ModelError, RobotModel, parse_urdf
+from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
+from turtle_sim_ode.sensors.config import SensorBlocks, read_sdf_sensors, read_sensors
+from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
+from turtle_sim_ode.world.plugins import ModelPlugins, read_plugins
+from turtle_sim_ode.world.records import Load, QuatXYZW
+from turtle_sim_ode.world.robot import DiffDriveRobot
+from turtle_sim_ode.world.values import WorldError, update_rate, vector
 
 Pose6 = Tuple[float, float, float, float, float, float]
 # (x, y, z, roll, pitch, yaw), or (position, quaternion (x, y, z, w)) as in geometry_msgs/Pose.
 SpawnPose = Union[Sequence[float], Tuple[Vec3, QuatXYZW]]
 
 log = logging.getLogger(__name__)
-
-
-class DiffDriveRobot:
-    """A model's differential drive plugin: velocity motors on two wheel joints and encoder odometry."""
-
-    def __init__(self, model: BuiltModel, config: DriveConfig) -> None:
-        self.model = model
-        self.config = config
-        self.params = config.params
-        self.left = model.joint(config.left_joint)
-        self.right = model.joint(config.right_joint)
-        self.drive = DiffDriveController(self.left.joint, self.right.joint, self.params)
-        self.odometry = WheelOdometry.from_params(self.params)
-
-    def update_odometry(self, now: float) -> None:
-        """Read the encoders (call at the odometry rate, after a step)."""
-        self.odometry.update(self.left.angle(), self.right.angle(), now)
-
-    def reset_odometry(self, now: float) -> None:
-        self.odometry.reset()
-        self.update_odometry(now)
 
 
 @dataclass(frozen=True)
@@ -101,7 +82,7 @@ class Simulation(WorldControl):
         self, name: str, robot: RobotModel, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
     ) -> List[str]:
         """Build ``robot`` as model ``name`` with its model frame at ``pose`` relative to
-        ``reference_frame`` (see world_control); return warnings.
+        ``reference_frame`` (see world.control); return warnings.
 
         Raises ModelError for a bad name or model, WorldError for a bad pose or frame; the
         world is left as it was.
