@@ -10,7 +10,8 @@ import time
 import pytest
 
 from turtle_sim_ode.models.sdf import model_format, parse_sdf_model
-from turtle_sim_ode.models.urdf import MAX_COLLISIONS, MAX_LINKS, ModelError, parse_urdf
+from turtle_sim_ode.models.urdf import MAX_COLLISIONS, MAX_LINKS, parse_urdf
+from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.settings import SettingsError, settings_from_params
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.values import WorldError, orientation

@@ -6,7 +6,8 @@ import pytest
 from conftest import TURTLEBOT_URDF
 
 from turtle_sim_ode.models.builder import build_model
-from turtle_sim_ode.models.urdf import ModelError, parse_urdf
+from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams
 

@@ -8,7 +8,8 @@ from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
 
 from turtle_sim_ode.models.builder import build_model, compose, inverse, pose_transform, quat_from_rpy
 from turtle_sim_ode.models.sdf import PLANE_THICKNESS, Include, parse_sdf_model, parse_sdf_world
-from turtle_sim_ode.models.urdf import Box, GazeboSurface, ModelError, Pose, parse_urdf
+from turtle_sim_ode.models.urdf import Box, GazeboSurface, parse_urdf, Pose
+from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams
 

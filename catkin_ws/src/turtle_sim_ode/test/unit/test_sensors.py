@@ -12,7 +12,7 @@ from typing import List, Tuple
 import pytest
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF, TurtleSim
 
-from turtle_sim_ode.models.urdf import ModelError
+from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.sensors import laser as sensors
 from turtle_sim_ode.sensors.config import LaserConfig, read_sdf_sensors, read_sensors
 from turtle_sim_ode.sensors.imu import ImuSensor

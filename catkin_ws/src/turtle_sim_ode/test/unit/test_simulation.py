@@ -4,7 +4,7 @@ import math
 import pytest
 from conftest import TURTLEBOT_URDF
 
-from turtle_sim_ode.models.urdf import ModelError
+from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.values import WorldError
 

@@ -5,7 +5,7 @@ import pytest
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
 
 from turtle_sim_ode.models.sdf import parse_sdf_world
-from turtle_sim_ode.models.urdf import ModelError
+from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.world import PhysicsParams
 from turtle_sim_ode.world.control import CONTINUOUS, PRISMATIC, REVOLUTE

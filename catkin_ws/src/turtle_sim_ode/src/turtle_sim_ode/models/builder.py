@@ -7,7 +7,8 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import ode
 
-from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, ModelError, Pose, RobotModel, Sphere
+from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, Pose, RobotModel, Sphere
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.world import PhysicsWorld, SurfaceParams
 

@@ -11,15 +11,12 @@ import math
 import re
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Dict, List, Optional, Set, Tuple
-from xml.etree.ElementTree import Element, ParseError
-
-import defusedxml
-import defusedxml.ElementTree as SafeET
+from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
+from turtle_sim_ode.models.text import ModelError, child_text, parse_xml, read_number, read_optional_number
 from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
-    MAX_URDF_CHARS,
     MESH_PLACEHOLDER_EDGE,
     Box,
     Collision,
@@ -32,16 +29,15 @@ from turtle_sim_ode.models.urdf import (
     JointDynamics,
     JointLimits,
     Link,
-    ModelError,
     Pose,
     RobotModel,
+    SensorElement,
     Sphere,
     Vec3,
     _bounded,
     _check_mass,
     _find_root,
     _is_positive_definite,
-    _number,
     _offset,
     _vec3,
     check_size,
@@ -169,25 +165,16 @@ def _as_pose(transform: Transform) -> Pose:
     return Pose(transform[0], _rpy(transform[1]))
 
 
-def _text(element: Element, path: str) -> Optional[str]:
-    found = element.find(path)
-    if found is None or found.text is None or not found.text.strip():
-        return None
-    return found.text.strip()
-
-
 def _optional_float(element: Element, path: str, what: str) -> Optional[float]:
-    text = _text(element, path)
-    return None if text is None else _number(text, f"{what} <{path}>")
+    return read_optional_number(child_text(element, path), f"{what} <{path}>")
 
 
 def _float(element: Element, path: str, what: str, default: float) -> float:
-    value = _optional_float(element, path, what)
-    return default if value is None else value
+    return read_number(child_text(element, path), f"{what} <{path}>", default)
 
 
 def _bool(element: Element, path: str, what: str, default: bool) -> bool:
-    text = _text(element, path)
+    text = child_text(element, path)
     if text is None:
         return default
     if text.lower() in ("true", "1"):
@@ -219,7 +206,7 @@ def _pose(element: Element, what: str) -> Pose:
         return Pose()
     if len(parts) != 6:
         raise ModelError(f"{what} <pose>: expected 6 numbers, got {pose.text!r}")
-    values = [_number(p, f"{what} <pose>") for p in parts]
+    values = [read_number(p, f"{what} <pose>") for p in parts]
     return Pose(_offset((values[0], values[1], values[2]), f"{what} <pose> x y z"), (values[3], values[4], values[5]))
 
 
@@ -229,19 +216,6 @@ def _plugin(element: Element, what: str) -> GazeboPlugin:
         element.get("name", ""),
         {child.tag: (child.text or "").strip() for child in element},
     )
-
-
-def _parse_xml(text: str) -> Element:
-    if len(text) > MAX_URDF_CHARS:
-        raise ModelError(f"SDF is {len(text)} characters, more than the {MAX_URDF_CHARS} allowed")
-    try:
-        return SafeET.fromstring(text)
-    except ParseError as error:
-        line, column = error.position
-        reason = str(error).split(":")[0]  # expat appends the position we report ourselves
-        raise ModelError(f"SDF is not well-formed XML at line {line}, column {column}: " f"{reason}") from None
-    except defusedxml.DefusedXmlException as error:
-        raise ModelError(f"SDF rejected by the XML guard: {error}") from None
 
 
 def _version(sdf: Element) -> Version:
@@ -300,7 +274,7 @@ def _parse_geometry(
         raise ModelError(f"{what}: missing <geometry> shape")
     what = f"{what} <{shape.tag}>"
     if shape.tag == "box":
-        size = _vec3(_text(shape, "size"), f"{what} <size>", (1.0, 1.0, 1.0))
+        size = _vec3(child_text(shape, "size"), f"{what} <size>", (1.0, 1.0, 1.0))
         if min(size) <= 0:
             raise ModelError(f"{what} <size> must be > 0, got {size}")
         return Box(_offset(size, f"{what} <size>")), identity
@@ -311,15 +285,15 @@ def _parse_geometry(
     if shape.tag == "plane":
         if not static:
             raise ModelError(f"{what}: planes are only supported in static models")
-        normal = _vec3(_text(shape, "normal"), f"{what} <normal>", (0.0, 0.0, 1.0))
+        normal = _vec3(child_text(shape, "normal"), f"{what} <normal>", (0.0, 0.0, 1.0))
         length = math.sqrt(sum(n * n for n in normal))
         if length < 1e-9:
             raise ModelError(f"{what} <normal> must not be zero")
         normal = (normal[0] / length, normal[1] / length, normal[2] / length)
-        size = (_text(shape, "size") or "1 1").split()
+        size = (child_text(shape, "size") or "1 1").split()
         if len(size) != 2:
             raise ModelError(f"{what} <size>: expected 2 numbers, got {' '.join(size)!r}")
-        sx, sy = (_number(s, f"{what} <size>") for s in size)
+        sx, sy = (read_number(s, f"{what} <size>") for s in size)
         if min(sx, sy) <= 0:
             raise ModelError(f"{what} <size> must be > 0, got {sx} {sy}")
         _offset((sx, sy, PLANE_THICKNESS), f"{what} <size>")
@@ -329,13 +303,13 @@ def _parse_geometry(
             ((-half * normal[0], -half * normal[1], -half * normal[2]), _plane_to_z(normal)),
         )
     if shape.tag == "mesh":
-        scale = _vec3(_text(shape, "scale"), f"{what} <scale>", (1.0, 1.0, 1.0))
+        scale = _vec3(child_text(shape, "scale"), f"{what} <scale>", (1.0, 1.0, 1.0))
         size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
         if min(size) <= 0:
             raise ModelError(f"{what} <scale> must not be zero, got {scale}")
         _offset(size, f"{what} placeholder box for <scale> {scale}")
         warnings.append(
-            f"{what}: mesh '{_text(shape, 'uri') or ''}' is not loaded; colliding "
+            f"{what}: mesh '{child_text(shape, 'uri') or ''}' is not loaded; colliding "
             f"with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead"
         )
         return Box(size), identity  # type: ignore[arg-type]
@@ -378,6 +352,7 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
         surface.update(values)
     if surface:
         model.surfaces[name] = GazeboSurface(**surface)
+    model.sensors.extend(SensorElement(name, sensor) for sensor in element.findall("sensor"))
     return link, _pose(element, what)
 
 
@@ -385,7 +360,7 @@ def _axis(
     element: Element, what: str, version: Version, joint_in_model: Transform, link_poses: Dict[str, Transform]
 ) -> Vec3:
     """The unit joint axis in the joint frame, whatever frame the SDF version writes it in."""
-    xyz = _vec3(_text(element, "xyz"), f"{what} <axis><xyz>", (0.0, 0.0, 1.0))
+    xyz = _vec3(child_text(element, "xyz"), f"{what} <axis><xyz>", (0.0, 0.0, 1.0))
     norm = math.sqrt(sum(a * a for a in xyz))
     if norm < 1e-9:
         raise ModelError(f"{what}: axis must not be zero")
@@ -417,7 +392,7 @@ def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Trans
     joint_type = _required(element, "type", what)
     if joint_type not in JOINT_TYPES:
         raise ModelError(f"{what}: unsupported type '{joint_type}' (supported: {JOINT_TYPES})")
-    parent, child = _text(element, "parent"), _text(element, "child")
+    parent, child = child_text(element, "parent"), child_text(element, "child")
     if parent is None or child is None:
         raise ModelError(f"{what}: needs <parent> and <child>")
     if parent == "world":
@@ -536,7 +511,7 @@ def parse_sdf_model(text: str) -> RobotModel:
 
     The model's own <pose> is not applied: build_model's pose places the model frame.
     """
-    root = _parse_xml(text)
+    root = parse_xml(text, "SDF")
     if root.tag == "model":
         return _parse_model(root, BARE_MODEL_VERSION)[0]
     if root.tag != "sdf":
@@ -560,8 +535,8 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
     if chosen.get("type", "ode") != "ode":
         warnings.append(f"<physics type='{chosen.get('type')}'>: only its ODE settings are read")
     # SDF 1.4 keeps gravity in <physics>, later versions in <world>.
-    gravity_text = _text(world, "gravity") or _text(chosen, "gravity")
-    solver = _text(chosen, "ode/solver/type")
+    gravity_text = child_text(world, "gravity") or child_text(chosen, "gravity")
+    solver = child_text(chosen, "ode/solver/type")
     if solver not in (None, "quick", "world"):
         raise ModelError(f"{what} <ode><solver><type>: expected quick or world, got {solver!r}")
     iterations = _optional_float(chosen, "ode/solver/iters", what)
@@ -586,7 +561,7 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
 
 def parse_sdf_world(text: str) -> World:
     """Parse ``<sdf version><world>``: physics, inline models, includes (not opened), plugins."""
-    root = _parse_xml(text)
+    root = parse_xml(text, "SDF")
     if root.tag != "sdf":
         raise ModelError(f"SDF root element must be <sdf>, got <{root.tag}>")
     version = _version(root)
@@ -608,7 +583,7 @@ def parse_sdf_world(text: str) -> World:
             names.add(model.name)
             world.models.append(WorldModel(model.name, pose, model))
         elif child.tag == "include":
-            uri = _text(child, "uri")
+            uri = child_text(child, "uri")
             if uri is None:
                 raise ModelError("<include> needs a <uri>")
             if uri == GROUND_PLANE_URI:
@@ -616,12 +591,12 @@ def parse_sdf_world(text: str) -> World:
             elif uri == SUN_URI:
                 world.sun = True
             else:
-                name = _text(child, "name")
+                name = child_text(child, "name")
                 if name is not None:
                     if name in names:
                         raise ModelError(f"two models are named '{name}'")
                     names.add(name)
-                static = _text(child, "static")
+                static = child_text(child, "static")
                 world.includes.append(
                     Include(
                         uri,

@@ -4,10 +4,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple, Union
-from xml.etree.ElementTree import Element, ParseError
+from xml.etree.ElementTree import Element
 
-import defusedxml
-import defusedxml.ElementTree as SafeET
+from turtle_sim_ode.models.text import ModelError, parse_xml, read_number
 
 Vec3 = Tuple[float, float, float]
 
@@ -17,7 +16,6 @@ Vec3 = Tuple[float, float, float]
 MAX_LINKS = 1000
 MAX_JOINTS = 1000
 MAX_COLLISIONS = 1000
-MAX_URDF_CHARS = 10_000_000
 # Magnitude limits: lengths (offsets, sizes) in m, masses in kg, inertia entries in kg m^2. Beyond them ODE's
 # collision grid or integrator overflows and aborts the whole process (offsets of 1e12 m, inertias of 1e300).
 MAX_LENGTH = 1e6
@@ -27,10 +25,6 @@ JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
 # Stand-in for a mesh collision: mesh files are never opened, so their size is unknown.
 MESH_PLACEHOLDER_EDGE = 0.01
 SURFACE_TAGS = {"mu1": "mu1", "mu2": "mu2", "kp": "kp", "kd": "kd", "maxVel": "max_vel", "minDepth": "min_depth"}
-
-
-class ModelError(ValueError):
-    """The URDF is malformed or describes a model that cannot be simulated."""
 
 
 @dataclass(frozen=True)
@@ -139,6 +133,15 @@ class GazeboPlugin:
     params: Dict[str, str]
 
 
+@dataclass(frozen=True)
+class SensorElement:
+    """A ``<sensor>`` as the model text has it, handed on for the sensors layer to read: a URDF's from a
+    ``<gazebo reference="link">`` block (``link`` None where the block names none), an SDF's from its ``<link>``."""
+
+    link: Optional[str]
+    element: Element
+
+
 @dataclass
 class RobotModel:
     name: str
@@ -147,6 +150,7 @@ class RobotModel:
     root: str
     surfaces: Dict[str, GazeboSurface] = field(default_factory=dict)
     plugins: List[GazeboPlugin] = field(default_factory=list)
+    sensors: List[SensorElement] = field(default_factory=list)
     warnings: List[str] = field(default_factory=list)
     # SDF: the root link's pose in the model frame, which build_model places at its pose.
     root_pose: Pose = Pose()
@@ -159,23 +163,13 @@ class RobotModel:
 
 
 # --- small parsing helpers ------------------------------------------------------
-def _number(text: Optional[str], what: str) -> float:
-    try:
-        value = float(text)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise ModelError(f"{what}: expected a number, got {text!r}") from None
-    if not math.isfinite(value):
-        raise ModelError(f"{what}: number must be finite, got {text!r}")
-    return value
-
-
 def _vec3(text: Optional[str], what: str, default: Vec3) -> Vec3:
     if text is None:
         return default
     parts = text.split()
     if len(parts) != 3:
         raise ModelError(f"{what}: expected 3 numbers, got {text!r}")
-    return (_number(parts[0], what), _number(parts[1], what), _number(parts[2], what))
+    return (read_number(parts[0], what), read_number(parts[1], what), read_number(parts[2], what))
 
 
 def _bounded(value: float, limit: float, what: str) -> float:
@@ -241,11 +235,11 @@ def _parse_inertial(element: Element, link: str) -> Inertial:
     mass_element = element.find("mass")
     if mass_element is None:
         raise ModelError(f"{what}: missing <mass>")
-    mass = _number(mass_element.get("value"), f"{what} mass")
+    mass = read_number(mass_element.get("value"), f"{what} mass")
     inertia = element.find("inertia")
     if inertia is None:
         raise ModelError(f"{what}: missing <inertia>")
-    values = {k: _number(inertia.get(k, "0"), f"{what} {k}") for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    values = {k: read_number(inertia.get(k, "0"), f"{what} {k}") for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
     _check_mass(mass, values, what)
     result = Inertial(mass, _pose(element.find("origin"), what), **values)
     if not _is_positive_definite(result.matrix()):
@@ -268,11 +262,11 @@ def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) 
         return Box(size)
     if shape.tag == "cylinder":
         return Cylinder(
-            _positive(_number(shape.get("radius"), f"{what} cylinder radius"), f"{what} cylinder radius"),
-            _positive(_number(shape.get("length"), f"{what} cylinder length"), f"{what} cylinder length"),
+            _positive(read_number(shape.get("radius"), f"{what} cylinder radius"), f"{what} cylinder radius"),
+            _positive(read_number(shape.get("length"), f"{what} cylinder length"), f"{what} cylinder length"),
         )
     if shape.tag == "sphere":
-        return Sphere(_positive(_number(shape.get("radius"), f"{what} sphere radius"), f"{what} sphere radius"))
+        return Sphere(_positive(read_number(shape.get("radius"), f"{what} sphere radius"), f"{what} sphere radius"))
     if shape.tag == "mesh":
         scale = _vec3(shape.get("scale"), f"{what} mesh scale", (1.0, 1.0, 1.0))
         size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
@@ -320,7 +314,7 @@ def _parse_joint(element: Element) -> Joint:
     limits = None
     if limit is not None:
         limits = JointLimits(
-            *(_number(limit.get(k, "0"), f"{what} limit {k}") for k in ("lower", "upper", "effort", "velocity"))
+            *(read_number(limit.get(k, "0"), f"{what} limit {k}") for k in ("lower", "upper", "effort", "velocity"))
         )
         if limits.lower > limits.upper:
             raise ModelError(f"{what}: limit lower {limits.lower} > upper {limits.upper}")
@@ -338,8 +332,8 @@ def _parse_joint(element: Element) -> Joint:
         JointDynamics()
         if dynamics is None
         else JointDynamics(
-            _number(dynamics.get("damping", "0"), f"{what} damping"),
-            _number(dynamics.get("friction", "0"), f"{what} friction"),
+            read_number(dynamics.get("damping", "0"), f"{what} damping"),
+            read_number(dynamics.get("friction", "0"), f"{what} friction"),
         ),
     )
 
@@ -352,6 +346,7 @@ def _tag_value(element: Element) -> Optional[str]:
 
 def _parse_gazebo(element: Element, model: RobotModel) -> None:
     reference = element.get("reference")
+    model.sensors.extend(SensorElement(reference, sensor) for sensor in element.findall("sensor"))
     if reference is None:
         for plugin in element.findall("plugin"):
             model.plugins.append(
@@ -365,7 +360,7 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
     values = {}
     for child in element:
         if child.tag in SURFACE_TAGS:
-            values[SURFACE_TAGS[child.tag]] = _number(
+            values[SURFACE_TAGS[child.tag]] = read_number(
                 _tag_value(child), f"<gazebo reference='{reference}'> {child.tag}"
             )
     if not values:
@@ -424,16 +419,7 @@ def _find_root(links: Dict[str, Link], joints: Dict[str, Joint]) -> str:
 
 def parse_urdf(text: str) -> RobotModel:
     """Parse a URDF document; raise ModelError with a clear message on any problem."""
-    if len(text) > MAX_URDF_CHARS:
-        raise ModelError(f"URDF is {len(text)} characters, more than the {MAX_URDF_CHARS} allowed")
-    try:
-        robot = SafeET.fromstring(text)
-    except ParseError as error:
-        line, column = error.position
-        reason = str(error).split(":")[0]  # expat appends the position we report ourselves
-        raise ModelError(f"URDF is not well-formed XML at line {line}, column {column}: " f"{reason}") from None
-    except defusedxml.DefusedXmlException as error:
-        raise ModelError(f"URDF rejected by the XML guard: {error}") from None
+    robot = parse_xml(text, "URDF")
     if robot.tag != "robot":
         raise ModelError(f"URDF root element must be <robot>, got <{robot.tag}>")
     name = _required(robot, "name", "<robot>")

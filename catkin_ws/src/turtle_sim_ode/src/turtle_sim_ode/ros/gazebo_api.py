@@ -18,7 +18,8 @@ from rosgraph.names import is_legal_base_name, is_legal_name
 from std_srvs.srv import Empty, EmptyResponse
 
 from turtle_sim_ode.models.sdf import model_format, parse_sdf_model
-from turtle_sim_ode.models.urdf import ModelError, parse_urdf
+from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.values import WorldError
 
@@ -145,7 +146,8 @@ class GazeboApi:
     # --- models ---------------------------------------------------------------------------------------------
     def _spawn(self, request, response) -> None:
         """Called without the world lock: the text is checked outside it, so that a large or malformed model is
-        refused without holding up the simulation; an accepted one is parsed again and spawned under it."""
+        refused without holding up the simulation; the parsed model, with its sensor and plugin blocks, is spawned under
+        it."""
         name = request.model_name
         if not name:
             raise WorldError("model name is empty")
@@ -164,11 +166,10 @@ class GazeboApi:
         xml_format = model_format(request.model_xml)
         if xml_format == "unknown":
             raise WorldError("model_xml of '%s' is neither URDF (<robot>) nor SDF (<sdf> or <model>)" % name)
-        (parse_urdf if xml_format == "urdf" else parse_sdf_model)(request.model_xml)
+        robot = (parse_urdf if xml_format == "urdf" else parse_sdf_model)(request.model_xml)
         initial_pose = (xyz(request.initial_pose.position), quaternion_of(request.initial_pose))
-        spawn = self._sim.spawn_urdf if xml_format == "urdf" else self._sim.spawn_sdf
         with self._lock:
-            warnings = spawn(name, request.model_xml, initial_pose, request.reference_frame)
+            warnings = self._sim.spawn_model(name, robot, initial_pose, request.reference_frame)
             self._on_spawn(name, request.robot_namespace)
         response.status_message = "SpawnModel: Successfully spawned entity" + (
             " (warnings: %s)" % "; ".join(warnings) if warnings else ""

@@ -20,7 +20,7 @@ from tf2_msgs.msg import TFMessage
 from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepSimulationResponse
 
 from turtle_sim_ode.models.sdf import parse_sdf_world
-from turtle_sim_ode.models.urdf import ModelError
+from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.gazebo_api import GazeboApi
 from turtle_sim_ode.ros.plugin_topics import Periodic, model_interfaces, sim_stamp
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params

@@ -5,12 +5,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from typing import List, Mapping, Optional, Sequence, Tuple
-from xml.etree.ElementTree import Element, ParseError
+from xml.etree.ElementTree import Element
 
-import defusedxml
-import defusedxml.ElementTree as SafeET
-
-from turtle_sim_ode.models.urdf import ModelError
+from turtle_sim_ode.models.sdf import parse_sdf_model
+from turtle_sim_ode.models.text import ModelError, child_text, read_number
+from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
 
 LASER_PLUGINS = ("libgazebo_ros_laser.so", "libgazebo_ros_ray_sensor.so")
 # gazebo_plugins' IMUs: the model plugin (also found inside <sensor type="imu">, as turtlebot3 has it) and the
@@ -75,24 +74,8 @@ class ImuNoise:
     linear_acceleration: float = 0.0
 
 
-def _child_text(element: Optional[Element], path: str) -> Optional[str]:
-    found = None if element is None else element.find(path)
-    if found is None or found.text is None or not found.text.strip():
-        return None
-    return found.text.strip()
-
-
 def _float(element: Optional[Element], path: str, default: float, what: str) -> float:
-    text = _child_text(element, path)
-    if text is None:
-        return default
-    try:
-        value = float(text)
-    except ValueError:
-        raise ModelError(f"{what} <{path}> must be a number, got '{text}'") from None
-    if not math.isfinite(value):
-        raise ModelError(f"{what} <{path}> must be finite, got '{text}'")
-    return value
+    return read_number(child_text(element, path), f"{what} <{path}>", default)
 
 
 def _laser_config(link: str, sensor: Element) -> LaserConfig:
@@ -101,15 +84,15 @@ def _laser_config(link: str, sensor: Element) -> LaserConfig:
     defaults = LaserConfig(link)
     ray = sensor.find("ray")
     horizontal = None if ray is None else ray.find("scan/horizontal")
-    samples_text = _child_text(horizontal, "samples")
+    samples_text = child_text(horizontal, "samples")
     try:
         samples = defaults.samples if samples_text is None else int(samples_text)
     except ValueError:
         raise ModelError(f"{what} <samples> must be an integer, got '{samples_text}'") from None
     noise = None if ray is None else ray.find("noise")
-    gaussian = noise is not None and (_child_text(noise, "type") or "gaussian").lower() == "gaussian"
+    gaussian = noise is not None and (child_text(noise, "type") or "gaussian").lower() == "gaussian"
     plugin = next((p for p in sensor.findall("plugin") if p.get("filename") in LASER_PLUGINS), None)
-    pose_text = _child_text(sensor, "pose")
+    pose_text = child_text(sensor, "pose")
     pose = defaults.pose
     if pose_text is not None:
         try:
@@ -127,12 +110,12 @@ def _laser_config(link: str, sensor: Element) -> LaserConfig:
         range_max=_float(ray, "range/max", defaults.range_max, what),
         range_resolution=_float(ray, "range/resolution", defaults.range_resolution, what),
         update_rate=_float(sensor, "update_rate", defaults.update_rate, what),
-        frame=(_child_text(plugin, "frameName") or "") if plugin is not None else "",
-        topic=(_child_text(plugin, "topicName") or defaults.topic) if plugin is not None else "",
+        frame=(child_text(plugin, "frameName") or "") if plugin is not None else "",
+        topic=(child_text(plugin, "topicName") or defaults.topic) if plugin is not None else "",
         noise_mean=_float(noise, "mean", 0.0, what) if gaussian else 0.0,
         noise_stddev=_float(noise, "stddev", 0.0, what) if gaussian else 0.0,
         pose=pose,
-        robot_namespace=(_child_text(plugin, "robotNamespace") or "") if plugin is not None else "",
+        robot_namespace=(child_text(plugin, "robotNamespace") or "") if plugin is not None else "",
     )
     config.validate()
     return config
@@ -176,25 +159,12 @@ class SensorBlocks:
 
 def _rate(element: Optional[Element], tags: Sequence[str], default: float, what: str) -> float:
     for tag in tags:
-        if _child_text(element, tag) is not None:
+        if child_text(element, tag) is not None:
             value = _float(element, tag, default, what)
             if value < 0:
                 raise ModelError(f"{what} <{tag}> must be >= 0, got {value}")
             return value
     return default
-
-
-def _param_number(params: Mapping[str, str], tag: str, default: float, what: str) -> float:
-    text = params.get(tag)
-    if text is None or not text.strip():
-        return default
-    try:
-        value = float(text)
-    except ValueError:
-        raise ModelError(f"{what} <{tag}> must be a number, got '{text}'") from None
-    if not math.isfinite(value) or value < 0:
-        raise ModelError(f"{what} <{tag}> must be a finite number >= 0, got '{text}'")
-    return value
 
 
 def imu_config(filename: str, params: Mapping[str, str], link: str = "", sensor_rate: float = 0.0) -> ImuConfig:
@@ -204,13 +174,13 @@ def imu_config(filename: str, params: Mapping[str, str], link: str = "", sensor_
     body = (params.get("bodyName") or link).strip().split("::")[-1]
     if not body:
         raise ModelError(f"{what} needs <bodyName> (the link the IMU is on)")
-    noise = _param_number(params, "gaussianNoise", 0.0, what)
+    noise = read_number(params.get("gaussianNoise"), f"{what} <gaussianNoise>", 0.0, minimum=0.0)
     rate_tag = "updateRateHZ" if "updateRateHZ" in params else "updateRate"
     return ImuConfig(
         link=body,
         topic=(params.get("topicName") or "imu").strip(),
         frame=(params.get("frameName") or "").strip(),
-        update_rate=_param_number(params, rate_tag, sensor_rate, what),
+        update_rate=read_number(params.get(rate_tag), f"{what} <{rate_tag}>", sensor_rate, minimum=0.0),
         noise=ImuNoise(noise, noise, noise),
         robot_namespace=(params.get("robotNamespace") or "").strip(),
     )
@@ -223,20 +193,11 @@ def _contact_config(link: str, sensor: Element, plugin: Element) -> ContactConfi
         link=link,
         name=name,
         collisions=tuple(c.text.strip() for c in sensor.findall("contact/collision") if c.text and c.text.strip()),
-        topic=_child_text(plugin, "bumperTopicName") or "bumper_states",
-        frame=_child_text(plugin, "frameName") or "world",
+        topic=child_text(plugin, "bumperTopicName") or "bumper_states",
+        frame=child_text(plugin, "frameName") or "world",
         update_rate=_rate(sensor, ("update_rate",), 0.0, what),
-        robot_namespace=_child_text(plugin, "robotNamespace") or "",
+        robot_namespace=child_text(plugin, "robotNamespace") or "",
     )
-
-
-def _safe_xml(text: str, kind: str) -> Element:
-    try:
-        return SafeET.fromstring(text)
-    except ParseError as error:
-        raise ModelError(f"{kind} is not well-formed XML: {error}") from None
-    except defusedxml.DefusedXmlException as error:
-        raise ModelError(f"{kind} rejected by the XML guard: {error}") from None
 
 
 def _add_sensor(found: SensorBlocks, link: str, sensor: Element) -> None:
@@ -257,33 +218,24 @@ def _add_sensor(found: SensorBlocks, link: str, sensor: Element) -> None:
         found.contacts += [_contact_config(link, sensor, p) for p in plugins if p.get("filename") == BUMPER_PLUGIN]
 
 
-def read_sensors(urdf: str) -> SensorBlocks:
-    """The ``<gazebo reference="link"><sensor>`` blocks of a URDF: ray (``gpu_ray`` too), imu and contact.
-
-    urdf_model keeps only contact tags of referenced ``<gazebo>`` blocks, so the raw text is
-    read again here. ModelError for malformed XML or bad values, or a sensor on no link.
-    """
-    robot = _safe_xml(urdf, "URDF")
-    links = {link.get("name") for link in robot.findall("link")}
+def model_sensors(robot: RobotModel) -> SensorBlocks:
+    """The sensors the parsed model carries (``robot.sensors``): ray (``gpu_ray`` too), imu and contact, with a
+    ROS plugin. ModelError for bad values, or a URDF sensor in a <gazebo> block that names no link of the model."""
     found = SensorBlocks()
-    for gazebo in robot.findall("gazebo"):
-        reference = gazebo.get("reference")
-        for sensor in gazebo.findall("sensor"):
-            if sensor.get("type") not in ("ray", "gpu_ray", "imu", "contact"):
-                continue
-            if reference is None or reference not in links:
-                raise ModelError(f"<sensor name='{sensor.get('name', '')}'> must be in a <gazebo reference=link>")
-            _add_sensor(found, reference, sensor)
+    for block in robot.sensors:
+        if block.element.get("type") not in ("ray", "gpu_ray", "imu", "contact"):
+            continue
+        if block.link is None or block.link not in robot.links:
+            raise ModelError(f"<sensor name='{block.element.get('name', '')}'> must be in a <gazebo reference=link>")
+        _add_sensor(found, block.link, block.element)
     return found
+
+
+def read_sensors(urdf: str) -> SensorBlocks:
+    """The sensors of a URDF's ``<gazebo reference="link"><sensor>`` blocks (ModelError as parse_urdf's)."""
+    return model_sensors(parse_urdf(urdf))
 
 
 def read_sdf_sensors(sdf: str) -> SensorBlocks:
-    """The ``<link><sensor>`` elements of an SDF model (``<sdf><model>`` or a bare ``<model>``); a sensor's
-    <pose> is in its link's frame, as in Gazebo. ModelError for malformed XML or bad values."""
-    root = _safe_xml(sdf, "SDF")
-    model = root if root.tag == "model" else root.find("model")
-    found = SensorBlocks()
-    for link in [] if model is None else model.findall("link"):
-        for sensor in link.findall("sensor"):
-            _add_sensor(found, link.get("name", ""), sensor)
-    return found
+    """The ``<link><sensor>`` elements of an SDF model; a sensor's <pose> is in its link's frame, as in Gazebo."""
+    return model_sensors(parse_sdf_model(sdf))

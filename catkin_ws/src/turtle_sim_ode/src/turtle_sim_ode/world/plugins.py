@@ -6,7 +6,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.urdf import GazeboPlugin, ModelError
+from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.sensors.config import ContactConfig, ImuConfig, LaserConfig, imu_config
 from turtle_sim_ode.sensors.kobuki import KOBUKI_CLIFF_THRESHOLD
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
@@ -76,16 +77,7 @@ class ModelPlugins:
 
 
 def _number(plugin: GazeboPlugin, tag: str, default: float, minimum: float = 0.0) -> float:
-    text = plugin.params.get(tag)
-    if text is None:
-        return default
-    try:
-        value = float(text)
-    except ValueError:
-        raise ModelError(f"{plugin.filename} <{tag}> must be a number, got '{text}'") from None
-    if not math.isfinite(value) or value < minimum:
-        raise ModelError(f"{plugin.filename} <{tag}> must be a finite number >= {minimum}, got '{text}'")
-    return value
+    return read_number(plugin.params.get(tag), f"{plugin.filename} <{tag}>", default, minimum)
 
 
 def _flag(plugin: GazeboPlugin, tag: str, default: bool) -> bool:

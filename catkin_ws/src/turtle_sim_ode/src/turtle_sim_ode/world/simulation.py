@@ -8,9 +8,10 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from turtle_sim_ode.models.builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
 from turtle_sim_ode.models.sdf import World, _rpy, parse_sdf_model
-from turtle_sim_ode.models.urdf import ModelError, RobotModel, parse_urdf
+from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
 from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
-from turtle_sim_ode.sensors.config import SensorBlocks, read_sdf_sensors, read_sensors
+from turtle_sim_ode.sensors.config import model_sensors
 from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
 from turtle_sim_ode.world.plugins import ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
@@ -81,7 +82,7 @@ class Simulation(WorldControl):
     def spawn_model(
         self, name: str, robot: RobotModel, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
     ) -> List[str]:
-        """Build ``robot`` as model ``name`` with its model frame at ``pose`` relative to
+        """Build ``robot`` as model ``name``, with its plugins and sensors, with its model frame at ``pose`` relative to
         ``reference_frame`` (see world.control); return warnings.
 
         Raises ModelError for a bad name or model, WorldError for a bad pose or frame; the
@@ -93,6 +94,7 @@ class Simulation(WorldControl):
             raise ModelError(f"model name '{name}' must not contain '{SCOPE}'")
         if name in self.models:
             raise ModelError(f"a model named '{name}' already exists")
+        sensors = model_sensors(robot)
         model = build_model(self.physics, robot, self._spawn_pose(pose, reference_frame))
         model.name = name
         warnings = list(robot.warnings)
@@ -109,6 +111,9 @@ class Simulation(WorldControl):
         except (ModelError, ValueError) as error:
             model.remove()
             raise ModelError(f"model '{name}': {error}") from None
+        plugins.lasers = [laser for laser in sensors.lasers if laser.topic]
+        plugins.imus += sensors.imus
+        plugins.contacts = sensors.contacts
         self.models[name] = model
         self.plugins[name] = plugins
         self._spawned[name] = _Spawned.of(model)
@@ -134,28 +139,14 @@ class Simulation(WorldControl):
     def spawn_urdf(
         self, name: str, urdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
     ) -> List[str]:
-        """Parse a URDF and ``spawn_model`` it, with its sensors (ModelError if it is bad)."""
-        robot = parse_urdf(urdf)
-        sensors = read_sensors(urdf)
-        warnings = self.spawn_model(name, robot, pose, reference_frame)
-        self._attach_sensors(name, sensors)
-        return warnings
-
-    def _attach_sensors(self, name: str, sensors: SensorBlocks) -> None:
-        plugins = self.plugins[name]
-        plugins.lasers = [laser for laser in sensors.lasers if laser.topic]
-        plugins.imus += sensors.imus
-        plugins.contacts = sensors.contacts
+        """Parse a URDF and ``spawn_model`` it (ModelError if it is bad)."""
+        return self.spawn_model(name, parse_urdf(urdf), pose, reference_frame)
 
     def spawn_sdf(
         self, name: str, sdf: str, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
     ) -> List[str]:
-        """Parse an SDF <model> and ``spawn_model`` it, with its sensors; its own <pose> is not applied."""
-        robot = parse_sdf_model(sdf)
-        sensors = read_sdf_sensors(sdf)
-        warnings = self.spawn_model(name, robot, pose, reference_frame)
-        self._attach_sensors(name, sensors)
-        return warnings
+        """Parse an SDF <model> and ``spawn_model`` it; its own <pose> is not applied."""
+        return self.spawn_model(name, parse_sdf_model(sdf), pose, reference_frame)
 
     def load_world(self, world: World) -> List[str]:
         """Take the world's physics and pacing, spawn its inline models; return warnings (one

@@ -1,0 +1,66 @@
+"""Reading model text (URDF, SDF, Gazebo plugin and sensor tags): the error it raises and the one number reader
+that every parser, sensor and plugin reader uses, so that a bad number gets the same clear message everywhere."""
+from __future__ import annotations
+
+import math
+from typing import Optional
+from xml.etree.ElementTree import Element, ParseError
+
+import defusedxml
+import defusedxml.ElementTree as SafeET
+
+# Far beyond any robot description; a larger text is refused before it is parsed.
+MAX_MODEL_CHARS = 10_000_000
+
+
+class ModelError(ValueError):
+    """The model text is malformed or describes a model that cannot be simulated."""
+
+
+def parse_xml(text: str, kind: str) -> Element:
+    """The root element of model text of ``kind`` ('URDF', 'SDF', ...), parsed once with XML entities refused
+    (defusedxml); ModelError with the parser's line and column otherwise."""
+    if len(text) > MAX_MODEL_CHARS:
+        raise ModelError(f"{kind} is {len(text)} characters, more than the {MAX_MODEL_CHARS} allowed")
+    try:
+        return SafeET.fromstring(text)
+    except ParseError as error:
+        line, column = error.position
+        reason = str(error).split(":")[0]  # expat appends the position we report ourselves
+        raise ModelError(f"{kind} is not well-formed XML at line {line}, column {column}: {reason}") from None
+    except defusedxml.DefusedXmlException as error:
+        raise ModelError(f"{kind} rejected by the XML guard: {error}") from None
+
+
+def child_text(element: Optional[Element], path: str) -> Optional[str]:
+    """The stripped text of ``element``'s child at ``path``; None where there is no element, child or text."""
+    found = None if element is None else element.find(path)
+    if found is None or found.text is None or not found.text.strip():
+        return None
+    return found.text.strip()
+
+
+def read_optional_number(text: Optional[str], what: str, minimum: float = -math.inf) -> Optional[float]:
+    """None where ``text`` is absent or blank, else a finite number >= ``minimum``; ModelError naming ``what``
+    and the text otherwise."""
+    if text is None or not text.strip():
+        return None
+    text = text.strip()
+    try:
+        value = float(text)
+    except ValueError:
+        raise ModelError(f"{what} must be a number, got '{text}'") from None
+    if not math.isfinite(value) or value < minimum:
+        bound = f" >= {minimum:g}" if minimum > -math.inf else ""
+        raise ModelError(f"{what} must be a finite number{bound}, got '{text}'")
+    return value
+
+
+def read_number(text: Optional[str], what: str, default: Optional[float] = None, minimum: float = -math.inf) -> float:
+    """As read_optional_number, with ``default`` where the text is absent; without a default it is required."""
+    value = read_optional_number(text, what, minimum)
+    if value is not None:
+        return value
+    if default is None:
+        raise ModelError(f"{what} must be a number, got nothing")
+    return default
