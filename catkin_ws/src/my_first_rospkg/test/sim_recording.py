@@ -3,10 +3,11 @@ import math
 import threading
 from typing import List, NamedTuple, Sequence
 
-import numpy
 import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
+
+from turtle_sim_ode.analysis import path_fit
 
 
 class Sample(NamedTuple):
@@ -79,14 +80,9 @@ class Recorder:
 
 
 def fit_circle(samples: Sequence[Sample]):
-    """Least-squares (Kasa) circle through the samples: centre x, centre y, radius."""
-    xs = numpy.array([s.x for s in samples])
-    ys = numpy.array([s.y for s in samples])
-    a = numpy.column_stack([xs, ys, numpy.ones_like(xs)])
-    b = xs * xs + ys * ys
-    (c0, c1, c2), *_ = numpy.linalg.lstsq(a, b, rcond=None)
-    cx, cy = c0 / 2.0, c1 / 2.0
-    return cx, cy, math.sqrt(c2 + cx * cx + cy * cy)
+    """Least-squares circle through the samples (turtle_sim_ode's path fit): centre x, centre y, radius."""
+    (cx, cy), radius = path_fit.fit_circle([(s.x, s.y) for s in samples])
+    return cx, cy, radius
 
 
 def unwrapped_yaw(samples: Sequence[Sample]) -> List[float]:

@@ -20,6 +20,8 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from tf2_msgs.msg import TFMessage
 
+from turtle_sim_ode.analysis.waiting import wait_for
+
 # A client that opens a persistent connection to a /gazebo service, uses it, and then waits to be killed.
 PERSISTENT_CLIENT = textwrap.dedent(
     """
@@ -42,16 +44,6 @@ def node_pid(name):
         return xmlrpc.client.ServerProxy(uri).getPid("/test_respawn")[2]
     except (rosgraph.MasterError, OSError, xmlrpc.client.Error):
         return None
-
-
-def wait_for(condition, timeout):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        value = condition()
-        if value:
-            return value
-        time.sleep(0.2)  # wall time: sim time jumps back to 0 when the simulator restarts
-    return condition()
 
 
 def travelled(moved, timeout=60):

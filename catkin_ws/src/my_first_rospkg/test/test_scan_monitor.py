@@ -1,7 +1,6 @@
 #!/usr/bin/env python3
 """rostest node: publish synthetic LaserScans and read scan_monitor's report of their minimum on /rosout."""
 import math
-import re
 import sys
 import threading
 import unittest

@@ -18,13 +18,12 @@ from xmlrpc.client import ServerProxy
 import rosgraph
 import rospy
 import rostest
-from gazebo_msgs import srv as gz
+from gazebo_clients import connect_gazebo_services, model_text, pose
 from gazebo_msgs.msg import LinkState, ModelState, ODEJointProperties
-from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
+from geometry_msgs.msg import Point, Twist, Vector3, Wrench
 from rosgraph_msgs.msg import Clock, Log
 from std_msgs.msg import String
 
-MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
 NAN, INF = float("nan"), float("inf")
 NODES = ("/gazebo", "/robot_state_publisher", "/listener")
 INERTIAL = '<inertial><mass value="{mass}"/><inertia ixx="{i}" iyy="{i}" izz="{i}"/></inertial>'
@@ -39,15 +38,6 @@ LAUGHS = (
     + "]>"
 )
 EXTERNAL = '<?xml version="1.0"?><!DOCTYPE r [<!ENTITY x SYSTEM "file:///etc/passwd">]>'
-
-
-def model_text(name):
-    with open(os.path.join(MODELS, name)) as model_file:
-        return model_file.read()
-
-
-def pose(x=0.0, y=0.0, z=0.0, qx=0.0, qy=0.0, qz=0.0, qw=1.0):
-    return Pose(Point(x, y, z), Quaternion(qx, qy, qz, qw))
 
 
 def link(name, mass=1.0, inertia=0.01, collision=COLLISION):
@@ -96,30 +86,7 @@ class Latest:
 class BadInput(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        names = {
-            "spawn_urdf_model": gz.SpawnModel,
-            "spawn_sdf_model": gz.SpawnModel,
-            "delete_model": gz.DeleteModel,
-            "get_model_state": gz.GetModelState,
-            "set_model_state": gz.SetModelState,
-            "get_model_properties": gz.GetModelProperties,
-            "get_link_state": gz.GetLinkState,
-            "set_link_state": gz.SetLinkState,
-            "get_link_properties": gz.GetLinkProperties,
-            "set_link_properties": gz.SetLinkProperties,
-            "get_joint_properties": gz.GetJointProperties,
-            "set_joint_properties": gz.SetJointProperties,
-            "get_physics_properties": gz.GetPhysicsProperties,
-            "set_physics_properties": gz.SetPhysicsProperties,
-            "set_model_configuration": gz.SetModelConfiguration,
-            "apply_body_wrench": gz.ApplyBodyWrench,
-            "clear_body_wrenches": gz.BodyRequest,
-            "apply_joint_effort": gz.ApplyJointEffort,
-            "clear_joint_forces": gz.JointRequest,
-        }
-        for name, srv_type in names.items():
-            rospy.wait_for_service("/gazebo/" + name, timeout=60)
-            setattr(cls, name, staticmethod(rospy.ServiceProxy("/gazebo/" + name, srv_type)))
+        connect_gazebo_services(cls)
         cls.clock = Latest("/clock", Clock)
         cls.rosout = Latest("/rosout", Log, keep=True)
         cls.cmd = rospy.Publisher("/mobile_base/commands/velocity", Twist, queue_size=10)

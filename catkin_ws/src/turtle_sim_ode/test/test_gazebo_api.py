@@ -2,68 +2,26 @@
 """rostest node: every /gazebo service on its happy path and its error paths, through gazebo_msgs clients, as
 code written for Gazebo calls them."""
 import math
-import os
 import sys
 import unittest
 
 import rosgraph
 import rospy
 import rostest
+from gazebo_clients import connect_gazebo_services, model_text, pose
 from gazebo_msgs import srv as gz
 from gazebo_msgs.msg import LinkState, ModelState, ModelStates, ODEJointProperties
-from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
+from geometry_msgs.msg import Point, Twist, Vector3, Wrench
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
-from std_srvs.srv import Empty
 
-MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
 NAN = float("nan")
-
-
-def model_text(name):
-    with open(os.path.join(MODELS, name)) as model_file:
-        return model_file.read()
-
-
-def pose(x=0.0, y=0.0, z=0.0, qx=0.0, qy=0.0, qz=0.0, qw=1.0):
-    return Pose(Point(x, y, z), Quaternion(qx, qy, qz, qw))
 
 
 class GazeboApi(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        names = {
-            "spawn_urdf_model": gz.SpawnModel,
-            "spawn_sdf_model": gz.SpawnModel,
-            "delete_model": gz.DeleteModel,
-            "get_model_state": gz.GetModelState,
-            "set_model_state": gz.SetModelState,
-            "get_model_properties": gz.GetModelProperties,
-            "get_world_properties": gz.GetWorldProperties,
-            "get_link_state": gz.GetLinkState,
-            "set_link_state": gz.SetLinkState,
-            "get_link_properties": gz.GetLinkProperties,
-            "set_link_properties": gz.SetLinkProperties,
-            "get_joint_properties": gz.GetJointProperties,
-            "set_joint_properties": gz.SetJointProperties,
-            "get_physics_properties": gz.GetPhysicsProperties,
-            "set_physics_properties": gz.SetPhysicsProperties,
-            "set_model_configuration": gz.SetModelConfiguration,
-            "apply_body_wrench": gz.ApplyBodyWrench,
-            "clear_body_wrenches": gz.BodyRequest,
-            "apply_joint_effort": gz.ApplyJointEffort,
-            "clear_joint_forces": gz.JointRequest,
-            "delete_light": gz.DeleteLight,
-            "get_light_properties": gz.GetLightProperties,
-            "set_light_properties": gz.SetLightProperties,
-            "pause_physics": Empty,
-            "unpause_physics": Empty,
-            "reset_world": Empty,
-            "reset_simulation": Empty,
-        }
-        for name, srv_type in names.items():
-            rospy.wait_for_service("/gazebo/" + name, timeout=60)
-            setattr(cls, name, staticmethod(rospy.ServiceProxy("/gazebo/" + name, srv_type)))
+        connect_gazebo_services(cls)
         cls.box = model_text("box.urdf")
 
     def spawn(self, name, xml=None, at=None, reference_frame="", sdf=False):

@@ -18,6 +18,8 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 from turtle_sim_ode_msgs.srv import StepSimulation
 
+from turtle_sim_ode.analysis.waiting import wait_for
+
 # (body, force x N, torque z N m, duration s, steps): push the box into the robot, turn the robot, push it back.
 WRENCHES = [
     ("box::box_link", -15.0, 0.0, 0.6, 800),
@@ -53,13 +55,6 @@ class Run:
         self.odom_stamps, self.clock_stamps = [], []
         rospy.Subscriber("/%s/odom" % name, Odometry, lambda m: self.odom_stamps.append(m.header.stamp))
         rospy.Subscriber("/%s/clock" % name, Clock, lambda m: self.clock_stamps.append(m.clock))
-
-
-def wait_for(condition, timeout=30.0):
-    deadline = rospy.Time.now() + rospy.Duration(timeout)
-    while not condition() and rospy.Time.now() < deadline:
-        rospy.sleep(0.05)
-    return condition()
 
 
 class Lockstep(unittest.TestCase):
@@ -103,8 +98,8 @@ class Lockstep(unittest.TestCase):
         self.assertTrue(answer.success, answer.status_message)
         self.assertAlmostEqual(answer.sim_time.to_sec() - before, 200 * run.time_step, delta=1e-6)
         # 0.2 s of sim time: /clock at 100 Hz and odometry at 50 Hz fall due 20 and 10 times.
-        self.assertTrue(wait_for(lambda: len(run.clock_stamps) >= clocks + 20), len(run.clock_stamps) - clocks)
-        self.assertTrue(wait_for(lambda: len(run.odom_stamps) >= odoms + 10), len(run.odom_stamps) - odoms)
+        self.assertTrue(wait_for(lambda: len(run.clock_stamps) >= clocks + 20, 30.0), len(run.clock_stamps) - clocks)
+        self.assertTrue(wait_for(lambda: len(run.odom_stamps) >= odoms + 10, 30.0), len(run.odom_stamps) - odoms)
         self.assertLessEqual(run.clock_stamps[-1].to_sec(), answer.sim_time.to_sec() + 1e-9)
 
     def test_c_refused_while_running_and_past_the_limit(self):
