@@ -1,4 +1,4 @@
-"""The compiled contact kernel steps a world bitwise like physics.py's Python path.
+"""The compiled contact kernel steps a world bitwise like physics.world's Python path.
 
 Each scenario runs twice from a freshly seeded ODE, once per path, and every step's body states, contact counts and
 watched contacts must be identical, float for float.

@@ -1,6 +1,6 @@
-"""Parse SDF 1.4-1.7 models and worlds (no file access) into urdf_model's RobotModel.
+"""Parse SDF 1.4-1.7 models and worlds (no file access) into the RobotModel of models.urdf.
 
-SDF places every link relative to the model; the URDF-style tree that model_builder
+SDF places every link relative to the model; the URDF-style tree that models.builder
 consumes has each joint's origin = parent link pose^-1 * child link pose, and the root
 link's model pose in ``RobotModel.root_pose``. Links no joint reaches (free bodies in
 SDF) hang off the root by "floating" joints, which the builder turns into free bodies.

@@ -1,7 +1,7 @@
 """ctypes binding of the compiled contact kernel (src/contact_kernel.c, built by catkin as
 libturtle_sim_ode_contacts.so): PhysicsWorld.step's collision and contact joints without Python's per-contact cost.
 
-The kernel steps a world bitwise like physics.py's Python path (test_contact_kernel.py), which stays in use where
+The kernel steps a world bitwise like physics.world's Python path (test_contact_kernel.py), which stays in use where
 the library is not built or cannot be loaded (``ContactKernel.load`` returns None).
 """
 from __future__ import annotations

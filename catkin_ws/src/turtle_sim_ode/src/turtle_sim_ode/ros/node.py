@@ -48,7 +48,7 @@ class SimulatorNode:
         self.stop_requested = threading.Event()
         if not settings.paused:
             self._unpaused.set()
-        # Published at step rates: packed and written synchronously (see ros_wire). No tf2_ros broadcaster: rospy
+        # Published at step rates: packed and written synchronously (see ros.wire). No tf2_ros broadcaster: rospy
         # shares one publisher per topic in a process, and the broadcaster's queue would make /tf queued again.
         self._clock_pub = PackedPublisher("/clock", Clock)
         self._clock_packer = ClockPacker()

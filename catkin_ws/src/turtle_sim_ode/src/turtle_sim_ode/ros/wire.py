@@ -45,7 +45,7 @@ def _float64s(values: Sequence[float]) -> bytes:
 
 
 def stamp_parts(seconds: float) -> Tuple[int, int]:
-    """(secs, nsecs) of a sim time, rounded to the nanosecond as ros_plugins.sim_stamp does."""
+    """(secs, nsecs) of a sim time, rounded to the nanosecond as plugin_topics.sim_stamp does."""
     nanoseconds = int(round(seconds * 1e9))
     return nanoseconds // 1000000000, nanoseconds % 1000000000
 
