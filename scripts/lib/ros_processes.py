@@ -1,5 +1,6 @@
-"""Process handling shared by the benchmark and the soak (scripts/bench_sim.py, scripts/soak.py): process groups
-tagged in their environment so that nothing they start outlives them, free loopback ports, CPU time."""
+"""Process handling shared by the benchmark, the soak and the three-hosts test (scripts/bench_sim.py, scripts/soak.py,
+scripts/tests/test_three_hosts.py): process groups tagged in their environment so that nothing they start outlives
+them, and free loopback ports."""
 from __future__ import annotations
 
 import contextlib
@@ -12,6 +13,10 @@ from typing import Dict, List
 
 TAG_VARIABLE = "TURTLE_SIM_ODE_TOOL_TAG"  # in the environment of every process started through Processes
 SHUTDOWN_TIMEOUT_S = 5.0
+
+
+class ToolError(RuntimeError):
+    """A tool could not set up or measure what it was asked to (the message says why)."""
 
 
 def tagged_pids(tag: str) -> List[int]:
@@ -95,10 +100,3 @@ def free_port() -> int:
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
         return probe.getsockname()[1]
-
-
-def cpu_seconds(pid: int) -> float:
-    """User + system CPU time of process ``pid``, all its threads."""
-    with open("/proc/%d/stat" % pid) as stat:
-        fields = stat.read().rsplit(")", 1)[1].split()  # from the state on: utime and stime are the 12th and 13th
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
