@@ -1,5 +1,6 @@
 """The ROS side shared by the benchmark and the soak (scripts/bench_sim.py, scripts/soak.py): a master of the tool's own
-on a free loopback port with the launches made on it, waiting for a condition, and a node's process id."""
+on a free loopback port with the launches made on it, waiting for a condition, a node's process id, and whether a
+service is offered."""
 from __future__ import annotations
 
 import contextlib
@@ -93,3 +94,14 @@ def node_pid(name: str, caller_id: str) -> int:
     if code != 1:
         raise ToolError("%s did not tell its pid: %s" % (name, message))
     return int(pid)
+
+
+def service_offered(service: str, caller_id: str) -> bool:
+    """Whether the master of ROS_MASTER_URI knows ``service`` (False while there is no master to ask)."""
+    import rosgraph
+
+    try:
+        rosgraph.Master(caller_id).lookupService(service)
+        return True
+    except (OSError, rosgraph.MasterException):
+        return False

@@ -9,7 +9,7 @@ import os
 import signal
 import socket
 import subprocess
-from typing import Dict, List
+from typing import Dict, List, Optional
 
 TAG_VARIABLE = "TURTLE_SIM_ODE_TOOL_TAG"  # in the environment of every process started through Processes
 SHUTDOWN_TIMEOUT_S = 5.0
@@ -57,16 +57,17 @@ class Processes:
                 signal.signal(signal.SIGINT, previous[0])
                 signal.signal(signal.SIGTERM, previous[1])
 
-    def start(self, command: List[str], env: Dict[str, str], log_name: str) -> subprocess.Popen:
-        """Start ``command`` as a new process group, output to ``log_name`` in the log directory."""
+    def start(self, command: List[str], env: Dict[str, str], log_name: Optional[str]) -> subprocess.Popen:
+        """Start ``command`` as a new process group, output to ``log_name`` in the log directory (None: to ours)."""
         tag = "%d-%d" % (os.getpid(), next(self._tags))
-        with open(os.path.join(self.log_dir, log_name), "ab") as log:
+        with contextlib.ExitStack() as stack:
+            log = stack.enter_context(open(os.path.join(self.log_dir, log_name), "ab")) if log_name else None
             process = subprocess.Popen(
                 command,
                 env=dict(env, **{TAG_VARIABLE: tag}),
                 stdin=subprocess.DEVNULL,
                 stdout=log,
-                stderr=subprocess.STDOUT,
+                stderr=subprocess.STDOUT if log else None,
                 start_new_session=True,
             )
         self._running[process] = tag
