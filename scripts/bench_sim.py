@@ -23,6 +23,8 @@ import sys
 import tempfile
 from typing import Any, Callable, Dict, Optional, Sequence
 
+# This file parses the arguments and runs the sections; they are in scripts/lib: bench_physics (1), bench_node and
+# bench_probe (2-4), bench_peer (5), bench_report (targets, table), bench_plan (run sizes).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
 from bench_node import full_node, launch_to_first_odom, real_time  # noqa: E402
 from bench_peer import peer  # noqa: E402

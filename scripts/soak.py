@@ -41,6 +41,8 @@ import tempfile
 import traceback
 from typing import Any, Dict, Optional, Sequence
 
+# This file parses the arguments and reports; the soak is in scripts/lib: soak_node (the driving and spawning node),
+# soak_sampling (the run and its samples), soak_report (the verdict and the table).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
 from ros_processes import Processes, ToolError  # noqa: E402
 from soak_node import COMMAND_PERIOD_S  # noqa: E402
