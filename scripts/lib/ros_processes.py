@@ -1,6 +1,6 @@
-"""Process handling shared by the benchmark, the soak and the three-hosts test (scripts/bench_sim.py, scripts/soak.py,
-scripts/tests/test_three_hosts.py): process groups tagged in their environment so that nothing they start outlives
-them, and free loopback ports."""
+"""Process handling shared by the benchmark, the soak, the demo's run and the three-hosts test (scripts/bench_sim.py,
+scripts/soak.py, scripts/lib/run_demo.py, scripts/tests/test_three_hosts.py): process groups tagged in their
+environment so that nothing they start outlives them, free loopback ports, and the error a tool reports."""
 from __future__ import annotations
 
 import contextlib
