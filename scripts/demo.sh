@@ -25,10 +25,13 @@ echo "Building the workspace (log: build.log) ..."
 scripts/build.sh > build.log 2>&1 || { tail -40 build.log; echo "demo.sh: build failed, see build.log" >&2; exit 1; }
 SOURCE_WORKSPACE="$repo/catkin_ws" . scripts/lib/ros_env.sh
 
-# A master of our own on a free loopback port: never disturb one the user has running.
-export ROS_MASTER_URI="http://127.0.0.1:$(/usr/bin/python3 scripts/lib/free_port.py)"
 mkdir -p results
 real_time_factor=0
 if [ "$gui" = true ]; then real_time_factor=1; fi
-exec roslaunch --screen turtle_sim_ode demo.launch gui:="$gui" real_time_factor:="$real_time_factor" \
-  output:="$repo/results/demo_circle.png"
+# The world in the background on a master of its own (a free loopback port), its output in results/demo_launch.log;
+# circle_demo in the foreground, so that the demo ends with its summary and the plot's path; all stopped at the end.
+echo "Starting the simulator (log: results/demo_launch.log) ..."
+gui_flag=()
+if [ "$gui" = true ]; then gui_flag=(--gui); fi
+exec /usr/bin/python3 scripts/lib/run_demo.py "${gui_flag[@]}" --real-time-factor "$real_time_factor" \
+  --output "$repo/results/demo_circle.png" --log "$repo/results/demo_launch.log"

@@ -1,5 +1,6 @@
-"""Process handling shared by the benchmark and the soak (scripts/bench_sim.py, scripts/soak.py): process groups
-tagged in their environment so that nothing they start outlives them, free loopback ports, CPU time."""
+"""Process handling shared by the benchmark, the soak, the demo's run and the three-hosts test (scripts/bench_sim.py,
+scripts/soak.py, scripts/lib/run_demo.py, scripts/tests/test_three_hosts.py): process groups tagged in their
+environment so that nothing they start outlives them, free loopback ports, and the error a tool reports."""
 from __future__ import annotations
 
 import contextlib
@@ -8,10 +9,14 @@ import os
 import signal
 import socket
 import subprocess
-from typing import Dict, List
+from typing import Dict, List, Optional
 
 TAG_VARIABLE = "TURTLE_SIM_ODE_TOOL_TAG"  # in the environment of every process started through Processes
 SHUTDOWN_TIMEOUT_S = 5.0
+
+
+class ToolError(RuntimeError):
+    """A tool could not set up or measure what it was asked to (the message says why)."""
 
 
 def tagged_pids(tag: str) -> List[int]:
@@ -52,16 +57,17 @@ class Processes:
                 signal.signal(signal.SIGINT, previous[0])
                 signal.signal(signal.SIGTERM, previous[1])
 
-    def start(self, command: List[str], env: Dict[str, str], log_name: str) -> subprocess.Popen:
-        """Start ``command`` as a new process group, output to ``log_name`` in the log directory."""
+    def start(self, command: List[str], env: Dict[str, str], log_name: Optional[str]) -> subprocess.Popen:
+        """Start ``command`` as a new process group, output to ``log_name`` in the log directory (None: to ours)."""
         tag = "%d-%d" % (os.getpid(), next(self._tags))
-        with open(os.path.join(self.log_dir, log_name), "ab") as log:
+        with contextlib.ExitStack() as stack:
+            log = stack.enter_context(open(os.path.join(self.log_dir, log_name), "ab")) if log_name else None
             process = subprocess.Popen(
                 command,
                 env=dict(env, **{TAG_VARIABLE: tag}),
                 stdin=subprocess.DEVNULL,
                 stdout=log,
-                stderr=subprocess.STDOUT,
+                stderr=subprocess.STDOUT if log else None,
                 start_new_session=True,
             )
         self._running[process] = tag
@@ -95,10 +101,3 @@ def free_port() -> int:
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
         return probe.getsockname()[1]
-
-
-def cpu_seconds(pid: int) -> float:
-    """User + system CPU time of process ``pid``, all its threads."""
-    with open("/proc/%d/stat" % pid) as stat:
-        fields = stat.read().rsplit(")", 1)[1].split()  # from the state on: utime and stime are the 12th and 13th
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")

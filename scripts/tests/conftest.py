@@ -1,9 +1,13 @@
-"""Helpers shared by the workspace tests that start ROS processes."""
+"""Helpers shared by the workspace tests that start ROS processes; scripts/lib (the tools' modules) on the path."""
 import os
 import shutil
 import subprocess
+import sys
 
 ROS_PYTHON = "/usr/bin/python3"
+LIB = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "lib"))
+if LIB not in sys.path:
+    sys.path.insert(0, LIB)
 
 
 def ros_missing():

@@ -2,13 +2,14 @@
 the simulator; it must exit 0 and its JSON must show the work done and memory, threads and fds flat after the warm-up.
 The 30-minute version is scripts/soak.sh."""
 import argparse
-import importlib.util
 import json
 import os
 import subprocess
 
 import pytest
 from conftest import ROS_PYTHON, ros_missing
+from soak_node import Stats
+from soak_report import summarize
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SOAK = os.path.join(REPO, "scripts", "soak.py")
@@ -82,17 +83,9 @@ def test_memory_threads_and_fds_stay_flat_after_warmup(soak):
 
 
 # --- the verdict on made-up samples (no ROS needed) ------------------------------------------------------------------
-def soak_module():
-    spec = importlib.util.spec_from_file_location("soak", SOAK)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
 def verdict(rss, fds, epolls=None, threads=None):
     """{check name: pass} for samples every 5 s with these RSS (MiB), fd and thread counts; warm-up 10 s."""
-    soak = soak_module()
-    stats = soak.Stats()
+    stats = Stats()
     stats.spawns["urdf_box"], stats.deletes = 10, 10
     samples = []
     for index, (rss_mib, fd_count) in enumerate(zip(rss, fds)):
@@ -117,7 +110,7 @@ def verdict(rss, fds, epolls=None, threads=None):
         )
     result = {"samples": samples, "warmup_s": 10.0, "simulator_alive": True}
     args = argparse.Namespace(max_rss_growth_mib_per_min=2.0, max_thread_growth=5, max_fd_growth=5)
-    soak.summarize(result, args, stats)
+    summarize(result, args, stats)
     return {check["name"]: check["pass"] for check in result["checks"]}
 
 

@@ -5,13 +5,12 @@ made. Every address is inside namespaces this test creates and removes."""
 import json
 import os
 import shutil
-import signal
 import subprocess
 import textwrap
-import time
 
 import pytest
 from conftest import ros_missing
+from ros_processes import Processes
 
 SUBNET = "10.213.77"
 PREFIX = "tso%d" % (os.getpid() % 100000)
@@ -88,75 +87,38 @@ def three_hosts():
             subprocess.run(["ip", "netns", "del", namespace], stderr=subprocess.DEVNULL)
 
 
-class Graph:
-    """Processes started in the namespaces, each in its own process group, all stopped at the end."""
-
-    def __init__(self, namespaces):
-        self.namespaces = namespaces
-        self.processes = []
-
-    def start(self, host, command, **popen):
-        env = dict(os.environ, ROS_IP=HOSTS[host], ROS_MASTER_URI=MASTER_URI)
-        env.pop("ROS_HOSTNAME", None)  # ROS_HOSTNAME would win over ROS_IP
-        process = subprocess.Popen(
-            ["ip", "netns", "exec", self.namespaces[host]] + command, env=env, start_new_session=True, **popen
-        )
-        self.processes.append(process)
-        return process
-
-    def stop(self):
-        for process in reversed(self.processes):
-            try:
-                os.killpg(process.pid, signal.SIGINT)
-            except ProcessLookupError:
-                continue
-        deadline = time.monotonic() + 15
-        for process in self.processes:
-            try:
-                process.wait(max(0.1, deadline - time.monotonic()))
-            except subprocess.TimeoutExpired:
-                os.killpg(process.pid, signal.SIGKILL)
-                process.wait()
+def host_command(namespaces, host, command):
+    """``command`` run in ``host``'s namespace, and its environment: ROS_IP of that host, the master on the first."""
+    env = dict(os.environ, ROS_IP=HOSTS[host], ROS_MASTER_URI=MASTER_URI)
+    env.pop("ROS_HOSTNAME", None)  # ROS_HOSTNAME would win over ROS_IP
+    return ["ip", "netns", "exec", namespaces[host]] + command, env
 
 
 def test_master_simulator_and_driver_on_three_hosts(three_hosts, tmp_path):
     reason = ros_missing()
     if reason:
         pytest.skip(reason)
-    graph = Graph(three_hosts)
-    logs = {name: open(tmp_path / (name + ".log"), "w") for name in ("master", "sim", "drive")}
-    try:
-        graph.start("master", ["roscore", "-p", "11311"], stdout=logs["master"], stderr=subprocess.STDOUT)
-        graph.start(
-            "sim",
-            ["roslaunch", "--wait", "turtle_sim_ode", "turtlebot_world.launch"],
-            stdout=logs["sim"],
-            stderr=subprocess.STDOUT,
-        )
-        graph.start(
-            "drive",
-            ["rosrun", "my_first_rospkg", "circle", "_laps:=0.5"],
-            stdout=logs["drive"],
-            stderr=subprocess.STDOUT,
-        )
-        check = graph.start("master", ["/usr/bin/python3", "-c", CHECK], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    # Each host's processes in a tagged process group of their own (scripts/lib/ros_processes.py), output to
+    # <host>.log in tmp_path; all stopped on leaving, whatever roslaunch started included.
+    with Processes(str(tmp_path)) as processes:
+        for host, command in (
+            ("master", ["roscore", "-p", "11311"]),
+            ("sim", ["roslaunch", "--wait", "turtle_sim_ode", "turtlebot_world.launch"]),
+            ("drive", ["rosrun", "my_first_rospkg", "circle", "_laps:=0.5"]),
+        ):
+            processes.start(*host_command(three_hosts, host, command), host + ".log")
+        command, env = host_command(three_hosts, "master", ["/usr/bin/python3", "-c", CHECK])
         try:
-            out, err = check.communicate(timeout=150)
-        except subprocess.TimeoutExpired:
-            check.kill()
-            out, err = check.communicate()
-        for log in logs.values():
-            log.flush()
+            check = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=150)
+            status, out, err = check.returncode, check.stdout, check.stderr
+        except subprocess.TimeoutExpired as expired:  # run() has killed it
+            status, out, err = "timed out", expired.stdout or b"", expired.stderr or b""
         detail = "check stderr:\n%s\nsim log tail:\n%s" % (
             err.decode()[-2000:],
             (tmp_path / "sim.log").read_text()[-2000:],
         )
-        assert check.returncode == 0, detail
+        assert status == 0, detail
         result = json.loads(out.decode().strip().splitlines()[-1])
         assert result["moved"] >= 0.3, result
         assert HOSTS["sim"] in result["gazebo"], result
         assert HOSTS["drive"] in result["circle"], result
-    finally:
-        graph.stop()
-        for log in logs.values():
-            log.close()

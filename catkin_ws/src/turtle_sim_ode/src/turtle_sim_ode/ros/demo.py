@@ -65,11 +65,11 @@ class CircleDemo:
         last_line = 0.0
         while not rospy.is_shutdown():
             elapsed = (rospy.Time.now() - start_sim).to_sec()
-            if elapsed >= self.settings.duration:
-                break
-            self._cmd.publish(twist)
+            done = elapsed >= self.settings.duration  # the lap's last line is printed too: its summary
+            if not done:
+                self._cmd.publish(twist)
             wall = time.monotonic() - start_wall
-            if interactive or wall - last_line >= 1.0:
+            if interactive or done or wall - last_line >= 1.0:
                 last_line = wall
                 with self._lock:
                     x, y = self.truth[-1] if self.truth else (math.nan, math.nan)
@@ -81,6 +81,8 @@ class CircleDemo:
                 )
                 sys.stdout.write(("\r" + line) if interactive else (line + "\n"))
                 sys.stdout.flush()
+            if done:
+                break
             try:
                 rate.sleep()
             except rospy.ROSTimeMovedBackwardsException:

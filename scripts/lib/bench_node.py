@@ -1,0 +1,130 @@
+"""Sections 2 to 4 of the benchmark (scripts/bench_sim.py), the simulator node on a master of its own: unthrottled with
+1 to 10 robots, paced to real time, and roslaunch to the first /odom."""
+from __future__ import annotations
+
+import os
+import statistics
+import time
+from typing import Any, Dict, List, Optional
+
+from bench_plan import CALLER_ID, PACKAGE, STARTUP_TIMEOUT_S, BenchError, Plan
+from bench_probe import Probe, first_odom_task, measure_rtf_task
+from ros_master import master
+from ros_processes import Processes
+
+
+def package_config(name: str) -> Dict[str, Any]:
+    """The default parameters in the package's config/``name``."""
+    import yaml
+
+    with open(os.path.join(PACKAGE, "config", name)) as config_file:
+        return yaml.safe_load(config_file)
+
+
+def write_yaml(path: str, values: Dict[str, Any]) -> str:
+    """Write ``values`` to ``path``; return ``path``."""
+    import yaml
+
+    with open(path, "w") as out:
+        yaml.safe_dump(values, out)
+    return path
+
+
+def node_rtf(
+    processes: Processes,
+    name: str,
+    robots: int,
+    time_step: float,
+    real_time_factor: float,
+    warmup: float,
+    window: float,
+) -> Dict[str, Any]:
+    """RTF and /clock intervals of the node in empty_world.launch with ``robots`` TurtleBots spawned."""
+    physics = dict(package_config("physics.yaml"), time_step=time_step)
+    config = package_config("simulator.yaml")
+    config["diff_drive"]["cmd_timeout"] = 0.0  # commands are sent once: the drives must not time out, at any RTF
+    physics_path = write_yaml(os.path.join(processes.log_dir, name + "-physics.yaml"), physics)
+    config_path = write_yaml(os.path.join(processes.log_dir, name + "-simulator.yaml"), config)
+    with master(processes, name, CALLER_ID, STARTUP_TIMEOUT_S) as ros:
+        launch = ros.launch(
+            "empty_world.launch",
+            ["real_time_factor:=%g" % real_time_factor, "physics:=" + physics_path, "config:=" + config_path],
+        )
+        with Probe(ros, measure_rtf_task, robots, warmup, window) as probe:
+            try:
+                result = probe.receive(2 * STARTUP_TIMEOUT_S + warmup + window)
+            except BenchError as error:
+                raise ros.failure(launch, error) from None
+    result.update(time_step=time_step, real_time_factor=real_time_factor)
+    return result
+
+
+def full_node(plan: Plan, processes: Processes) -> Dict[str, Any]:
+    """Section 2: the unthrottled node for each time step and robot count."""
+    runs = []
+    for time_step in plan.time_steps:
+        for robots in plan.robot_counts:
+            name = "rtf-%drobots-%gms" % (robots, time_step * 1e3)
+            print("  full node: %d robot(s), %g ms ..." % (robots, time_step * 1e3), flush=True)
+            run = node_rtf(processes, name, robots, time_step, 0.0, plan.warmup_s, plan.window_s)
+            run["steps_per_s"] = run["rtf"] / time_step
+            run["wall_ms_per_sim_s"] = 1e3 / run["rtf"]
+            run["wall_ms_per_sim_s_per_robot"] = run["wall_ms_per_sim_s"] / robots
+            del run["clock_interval_ms"]
+            runs.append(run)
+    return {
+        "real_time_factor": 0.0,
+        "sensors": "all subscribed: /clock, /tf and each robot's odom, joint_states, imu, scan",
+        "runs": runs,
+        "linearity_at_1ms": {
+            "wall": linearity(runs, 0.001, "wall_ms_per_sim_s"),
+            "node_cpu": linearity(runs, 0.001, "node_cpu_ms_per_sim_s"),
+        },
+    }
+
+
+def linearity(runs: List[Dict[str, Any]], time_step: float, cost: str) -> Optional[float]:
+    """``cost`` per sim second of the most robots over the line through the two fewest (1 = linear); None with
+    fewer than three robot counts."""
+    costs = sorted((run["robots"], run[cost]) for run in runs if run["time_step"] == time_step)
+    if len(costs) < 3:
+        return None
+    (n1, c1), (n2, c2), (n3, c3) = costs[0], costs[1], costs[-1]
+    return c3 / (c1 + (c2 - c1) * (n3 - n1) / (n2 - n1))
+
+
+def real_time(plan: Plan, processes: Processes) -> Dict[str, Any]:
+    """Section 3: the node paced to real time."""
+    print("  real time: %g s ..." % plan.real_time_window_s, flush=True)
+    run = node_rtf(processes, "real-time", 1, 0.001, 1.0, plan.warmup_s, plan.real_time_window_s)
+    return {
+        "real_time_factor": 1.0,
+        "robots": 1,
+        "time_step": 0.001,
+        "wall_s": run["wall_s"],
+        "sim_s": run["sim_s"],
+        "rtf": run["rtf"],
+        "node_cpu_share": run["node_cpu_share"],
+        "clock_interval_ms": run["clock_interval_ms"],
+    }
+
+
+def launch_to_first_odom(plan: Plan, processes: Processes) -> Dict[str, Any]:
+    """Section 4: wall seconds from starting roslaunch (master already up) to the first /odom message."""
+    times = []
+    for index in range(plan.launch_runs):
+        print("  launch %d/%d ..." % (index + 1, plan.launch_runs), flush=True)
+        with master(processes, "launch-%d" % index, CALLER_ID, STARTUP_TIMEOUT_S) as ros:
+            with Probe(ros, first_odom_task) as probe:
+                probe.receive(STARTUP_TIMEOUT_S)
+                start = time.monotonic()
+                launch = ros.launch("turtlebot_world.launch", [])
+                try:
+                    times.append(probe.receive(STARTUP_TIMEOUT_S + 5) - start)
+                except BenchError as error:
+                    raise ros.failure(launch, error) from None
+    return {
+        "command": "roslaunch turtle_sim_ode turtlebot_world.launch",
+        "first_odom_s": statistics.median(times),
+        "runs_s": times,
+    }
