@@ -85,16 +85,21 @@ class WindowShowsCanvas(unittest.TestCase):
             rospy.wait_for_service("/turtle1/teleport_absolute", timeout)
             teleport = rospy.ServiceProxy("/turtle1/teleport_absolute", TeleportAbsolute)
             set_pen = rospy.ServiceProxy("/turtle1/set_pen", SetPen)
-            # A default-pen trail along y = 2 m from x = 2 to 5, then a red one along y = 4 m.
-            teleport(2.0, 2.0, 0.0)
-            teleport(5.0, 2.0, 0.0)
-            set_pen(255, 0, 0, 5, 0)
-            teleport(5.0, 4.0, 0.0)
-            teleport(2.0, 4.0, 0.0)
-            teleport(8.0, 8.0, 0.0)  # the turtle itself, away from the trails
-            pose = rospy.wait_for_message("/turtle1/pose", Pose, timeout)
-            while abs(pose.x - 8.0) > 1e-3:
+
+            def teleport_and_wait(x: float, y: float) -> None:
+                """Teleports wait for the next update; set_pen acts at once: let the trail be drawn first."""
+                teleport(x, y, 0.0)
                 pose = rospy.wait_for_message("/turtle1/pose", Pose, timeout)
+                while abs(pose.x - x) > 1e-3 or abs(pose.y - y) > 1e-3:
+                    pose = rospy.wait_for_message("/turtle1/pose", Pose, timeout)
+
+            # A default-pen trail along y = 2 m from x = 2 to 5, then a red one along y = 4 m.
+            teleport_and_wait(2.0, 2.0)
+            teleport_and_wait(5.0, 2.0)
+            set_pen(255, 0, 0, 5, 0)
+            teleport_and_wait(5.0, 4.0)
+            teleport_and_wait(2.0, 4.0)
+            teleport_and_wait(8.0, 8.0)  # the turtle itself, away from the trails
 
             probes = {
                 "background": (to_pixel(8.0, 2.0), BACKGROUND),

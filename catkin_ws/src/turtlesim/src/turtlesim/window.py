@@ -14,6 +14,7 @@ REFRESH_MS = 33  # redraw period
 SHELL_COLOUR = "#2e7d32"
 SKIN_COLOUR = "#9ccc65"
 OUTLINE_COLOUR = "#1b3d1c"
+TURTLE_SCALE = 1.5  # the figure below is 20 px long; scaled, about 30 px, two thirds of a metre (45 px)
 _SHELL = [(11.0 * math.cos(a), 8.5 * math.sin(a)) for a in (2 * math.pi * i / 20 for i in range(20))]
 _HEAD = [(11.0 + 5.0 * math.cos(a), 4.0 * math.sin(a)) for a in (2 * math.pi * i / 12 for i in range(12))]
 _FLIPPERS = [
@@ -31,7 +32,7 @@ def turtle_polygons(x: float, y: float, theta: float) -> List[Tuple[str, List[fl
 
     def place(points: Sequence[Tuple[float, float]]) -> List[float]:
         flat = []
-        for u, v in points:
+        for u, v in ((TURTLE_SCALE * u, TURTLE_SCALE * v) for u, v in points):
             flat += [cx + u * cos_t - v * sin_t, cy - (u * sin_t + v * cos_t)]  # canvas rows grow downwards
         return flat
 
