@@ -9,8 +9,10 @@ from turtlesim.msg import Pose
 
 class Mimic:
     def __init__(self):
-        self._pub = rospy.Publisher("output/cmd_vel", Twist, queue_size=1)
-        self._sub = rospy.Subscriber("input/pose", Pose, self._on_pose, queue_size=1)
+        # roscpp's NodeHandle("input") remaps the namespace itself; rospy remaps whole names only, so resolve the
+        # namespaces first: <remap from="input" to="turtlesim1/turtle1"/> then works as with the C++ mimic.
+        self._pub = rospy.Publisher(rospy.resolve_name("output") + "/cmd_vel", Twist, queue_size=1)
+        self._sub = rospy.Subscriber(rospy.resolve_name("input") + "/pose", Pose, self._on_pose, queue_size=1)
 
     def _on_pose(self, pose: Pose) -> None:
         twist = Twist()
