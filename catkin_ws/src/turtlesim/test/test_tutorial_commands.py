@@ -177,6 +177,17 @@ class TutorialCommands(unittest.TestCase):
         finally:
             stop(process)
 
+    def test_bad_background_param_is_fatal_at_start_up(self):
+        output = self.run_command(
+            "rosrun turtlesim turtlesim_node __name:=bad_background __ns:=bad_background _background_r:=300",
+            exit_code=1,
+        )
+        self.assertRegex(
+            output,
+            r"Parameter \[/bad_background/bad_background/background_r\] must be an integer in "
+            r"\[0, 255\], got \[300\]",
+        )
+
     def test_rosnode_list_info_ping(self):
         self.assertIn("/turtlesim", self.run_command("rosnode list").split())
         info = self.run_command("rosnode info /turtlesim")
