@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import random
 
 import pytest
 
@@ -75,28 +76,54 @@ def test_theta_wraps_to_minus_pi_to_pi():
     assert wrap_angle(0.5) == pytest.approx(0.5)
 
 
+EDGE = 0.01  # m from a wall: one 16 ms update at 2 m/s (0.032 m) crosses it
+
+
 @pytest.mark.parametrize(
-    "theta, wall_x, wall_y", [(0.0, WORLD_SIZE, None), (math.pi, 0.0, None), (-math.pi / 2, None, 0.0)]
+    "start, theta, clamped",
+    [
+        ((WORLD_SIZE - EDGE, CENTRE), 0.0, (WORLD_SIZE, CENTRE)),  # right wall
+        ((EDGE, CENTRE), math.pi, (0.0, CENTRE)),  # left wall
+        ((CENTRE, WORLD_SIZE - EDGE), math.pi / 2, (CENTRE, WORLD_SIZE)),  # top wall
+        ((CENTRE, EDGE), -math.pi / 2, (CENTRE, 0.0)),  # bottom wall
+        ((EDGE, EDGE), -3 * math.pi / 4, (0.0, 0.0)),  # corner
+    ],
 )
-def test_leaving_the_canvas_clamps_and_reports_the_wall(theta, wall_x, wall_y):
+def test_leaving_the_canvas_clamps_and_reports_the_wall(start, theta, clamped):
     world = World()
-    world.spawn(
-        "t",
-        WORLD_SIZE - 0.01 if wall_x else (0.01 if wall_x == 0.0 else CENTRE),
-        0.01 if wall_y == 0.0 else CENTRE,
-        theta,
-    )
+    world.spawn("t", start[0], start[1], theta)
     turtle = world.turtles["t"]
     turtle.command(2.0, 0.0, 0.0, now=0.0)
     hits = world.update(now=0.0)
-    assert len(hits) == 1 and hits[0].name == "t"
-    assert 0.0 <= turtle.x <= WORLD_SIZE and 0.0 <= turtle.y <= WORLD_SIZE
-    if wall_x is not None:
-        assert turtle.x == wall_x
-    if wall_y is not None:
-        assert turtle.y == wall_y
+    assert [hit.name for hit in hits] == ["t"]
+    assert (turtle.x, turtle.y) == (pytest.approx(clamped[0], abs=1e-9), pytest.approx(clamped[1], abs=1e-9))
+    # The message gives where the turtle would have been: outside the canvas.
     assert hits[0].message() == "Oh no! I hit the wall! (Clamping from [x=%f, y=%f])" % (hits[0].x, hits[0].y)
     assert not (0.0 <= hits[0].x <= WORLD_SIZE and 0.0 <= hits[0].y <= WORLD_SIZE)
+
+
+def test_random_drives_stay_on_the_canvas_and_every_clamp_is_reported():
+    """Generated inputs beside the hand-picked ones: 200 random commands of random length, seeded."""
+    rng = random.Random(17)
+    world = world_with_turtle1()
+    turtle = world.turtles["turtle1"]
+    now = 0.0
+    for _ in range(200):
+        lin_x, lin_y, ang = rng.uniform(-5, 5), rng.uniform(-2, 2), rng.uniform(-4, 4)
+        turtle.command(lin_x, lin_y, ang, now)
+        for _ in range(rng.randint(1, 40)):
+            x, y, theta = turtle.x, turtle.y, turtle.theta
+            hits = world.update(now)
+            now += UPDATE_PERIOD
+            assert 0.0 <= turtle.x <= WORLD_SIZE and 0.0 <= turtle.y <= WORLD_SIZE
+            assert -math.pi <= turtle.theta < math.pi
+            expected_theta = wrap_angle(theta + ang * UPDATE_PERIOD)
+            free_x = x + (math.cos(expected_theta) * lin_x - math.sin(expected_theta) * lin_y) * UPDATE_PERIOD
+            free_y = y + (math.sin(expected_theta) * lin_x + math.cos(expected_theta) * lin_y) * UPDATE_PERIOD
+            outside = not (0.0 <= free_x <= WORLD_SIZE and 0.0 <= free_y <= WORLD_SIZE)
+            assert bool(hits) == outside
+            if not outside:
+                assert (turtle.x, turtle.y) == (pytest.approx(free_x), pytest.approx(free_y))
 
 
 def test_no_wall_report_inside_the_canvas():
