@@ -22,7 +22,10 @@ class Mimic:
 
 
 def main() -> int:
-    rospy.init_node("turtle_mimic")
-    Mimic()
-    rospy.spin()
+    try:
+        rospy.init_node("turtle_mimic")
+        Mimic()
+        rospy.spin()
+    except rospy.ROSInterruptException:
+        pass
     return 0

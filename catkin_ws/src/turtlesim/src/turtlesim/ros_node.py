@@ -39,8 +39,12 @@ class TurtleHandles:
         self.cmd_sub = rospy.Subscriber(name + "/cmd_vel", Twist, node.on_cmd_vel, callback_args=name, queue_size=1)
         self.services = [
             rospy.Service(name + "/set_pen", SetPen, lambda req: node.on_set_pen(name, req)),
-            rospy.Service(name + "/teleport_absolute", TeleportAbsolute, lambda req: node.on_teleport(name, req)),
-            rospy.Service(name + "/teleport_relative", TeleportRelative, lambda req: node.on_teleport(name, req)),
+            rospy.Service(
+                name + "/teleport_absolute", TeleportAbsolute, lambda req: node.on_teleport_absolute(name, req)
+            ),
+            rospy.Service(
+                name + "/teleport_relative", TeleportRelative, lambda req: node.on_teleport_relative(name, req)
+            ),
         ]
         self.last_wall_warning = float("-inf")
 
@@ -178,18 +182,26 @@ class TurtlesimNode:
             if turtle is not None:
                 turtle.command(msg.linear.x, msg.linear.y, msg.angular.z, time.monotonic())
 
-    def on_set_pen(self, name: str, req) -> SetPenResponse:
+    def _on_turtle(self, name: str, action) -> None:
+        """Run action() on the world under the lock; a turtle killed meanwhile fails the call with a message."""
         with self.lock:
-            self.world.set_pen(name, (req.r, req.g, req.b), req.width, bool(req.off))
+            try:
+                action()
+            except WorldError as error:
+                rospy.logerr(str(error))
+                raise rospy.ServiceException(str(error))
+
+    def on_set_pen(self, name: str, req) -> SetPenResponse:
+        self._on_turtle(name, lambda: self.world.set_pen(name, (req.r, req.g, req.b), req.width, bool(req.off)))
         return SetPenResponse()
 
-    def on_teleport(self, name: str, req):
-        with self.lock:
-            if hasattr(req, "linear"):
-                self.world.teleport_relative(name, req.linear, req.angular)
-                return TeleportRelativeResponse()
-            self.world.teleport_absolute(name, req.x, req.y, req.theta)
-            return TeleportAbsoluteResponse()
+    def on_teleport_absolute(self, name: str, req) -> TeleportAbsoluteResponse:
+        self._on_turtle(name, lambda: self.world.teleport_absolute(name, req.x, req.y, req.theta))
+        return TeleportAbsoluteResponse()
+
+    def on_teleport_relative(self, name: str, req) -> TeleportRelativeResponse:
+        self._on_turtle(name, lambda: self.world.teleport_relative(name, req.linear, req.angular))
+        return TeleportRelativeResponse()
 
     # --- for the window ------------------------------------------------------------------------------------------
     def snapshot(self, canvas_version: int) -> Tuple[int, bytes, List[Tuple[float, float, float]]]:
