@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""rostest node: `rosrun turtlesim turtle_teleop_key` on a pseudo-terminal. The usage text shows, an up-arrow
+escape sequence publishes linear.x 2.0 on turtle1/cmd_vel (down -2.0, left angular.z 2.0), and 'q' ends it with
+exit code 0 and the terminal's settings as they were."""
+from __future__ import annotations
+
+import os
+import pty
+import select
+import signal
+import subprocess
+import sys
+import termios
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+
+KEYS = {"up": b"\x1b[A", "down": b"\x1b[B", "left": b"\x1b[D", "right": b"\x1b[C"}
+
+
+class TeleopOnPty(unittest.TestCase):
+    def setUp(self):
+        self.timeout = rospy.get_param("~timeout")
+        self.twists = []
+        self.changed = threading.Condition()
+        self.sub = rospy.Subscriber("/turtle1/cmd_vel", Twist, self.on_twist, queue_size=10)
+        self.master, self.slave = pty.openpty()
+        self.before = termios.tcgetattr(self.slave)
+        self.output = b""
+        self.process = subprocess.Popen(
+            ["rosrun", "turtlesim", "turtle_teleop_key"],
+            stdin=self.slave,
+            stdout=self.slave,
+            stderr=self.slave,
+            start_new_session=True,
+        )
+
+    def tearDown(self):
+        self.sub.unregister()
+        if self.process.poll() is None:
+            os.killpg(self.process.pid, signal.SIGKILL)
+            self.process.wait(5)
+        os.close(self.master)
+        os.close(self.slave)
+
+    def on_twist(self, msg: Twist) -> None:
+        with self.changed:
+            self.twists.append(msg)
+            self.changed.notify_all()
+
+    def read_until(self, text: bytes) -> None:
+        deadline = time.monotonic() + self.timeout
+        while text not in self.output:
+            remaining = deadline - time.monotonic()
+            self.assertGreater(remaining, 0, "%r not seen; output: %r" % (text, self.output))
+            ready, _, _ = select.select([self.master], [], [], remaining)
+            if ready:
+                self.output += os.read(self.master, 4096)
+
+    def press(self, key: str, linear: float, angular: float) -> None:
+        with self.changed:
+            count = len(self.twists)
+        os.write(self.master, KEYS[key])
+        with self.changed:
+            self.assertTrue(self.changed.wait_for(lambda: len(self.twists) > count, self.timeout), key)
+            twist = self.twists[-1]
+        self.assertEqual((twist.linear.x, twist.angular.z), (linear, angular), key)
+
+    def test_arrows_and_quit(self):
+        self.read_until(b"Use arrow keys to move the turtle. 'q' to quit.")
+        self.assertIn(b"Reading from keyboard", self.output)
+        # The publisher must be connected before a key is worth pressing; there is no event to wait on for that.
+        deadline = time.monotonic() + self.timeout
+        while self.sub.get_num_connections() == 0:
+            self.assertLess(time.monotonic(), deadline, "turtle_teleop_key never connected to turtle1/cmd_vel")
+            time.sleep(0.05)
+        self.assertNotEqual(termios.tcgetattr(self.slave)[3], self.before[3], "terminal not in raw mode")
+        self.press("up", 2.0, 0.0)
+        self.press("down", -2.0, 0.0)
+        self.press("left", 0.0, 2.0)
+        self.press("right", 0.0, -2.0)
+        os.write(self.master, b"q")
+        self.assertEqual(self.process.wait(self.timeout), 0)
+        self.assertEqual(termios.tcgetattr(self.slave), self.before, "terminal settings not restored")
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_teleop_key")
+    rostest.rosrun("turtlesim", "teleop_key", TeleopOnPty, sys.argv)
