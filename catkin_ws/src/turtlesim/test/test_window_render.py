@@ -17,7 +17,7 @@ import rostest
 
 # The screenshot reader of the workspace's simulator. Not a <test_depend>: turtle_sim_ode test-depends on
 # beginner_tutorials, which runs turtlesim, so catkin would see a cycle; both are built in this workspace.
-from turtle_sim_ode.xwd_image import read_xwd
+from turtle_sim_ode.analysis.xwd_image import read_xwd
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen, TeleportAbsolute
 
