@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Dict, List, Optional, Set, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
+from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.models.text import ModelError, child_text, parse_xml, read_number, read_optional_number
 from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
@@ -360,11 +361,9 @@ def _axis(
     element: Element, what: str, version: Version, joint_in_model: Transform, link_poses: Dict[str, Transform]
 ) -> Vec3:
     """The unit joint axis in the joint frame, whatever frame the SDF version writes it in."""
-    xyz = _vec3(child_text(element, "xyz"), f"{what} <axis><xyz>", (0.0, 0.0, 1.0))
-    norm = math.sqrt(sum(a * a for a in xyz))
-    if norm < 1e-9:
-        raise ModelError(f"{what}: axis must not be zero")
-    xyz = (xyz[0] / norm, xyz[1] / norm, xyz[2] / norm)
+    xyz = sanity.unit_vector(
+        _vec3(child_text(element, "xyz"), f"{what} <axis><xyz>", (0.0, 0.0, 1.0)), f"{what}: axis", ModelError
+    )
     # 1.4: always the model frame. 1.5, 1.6: the joint frame unless <use_parent_model_frame>.
     # 1.7: the joint frame unless <xyz expressed_in="__model__" or a link name>.
     if version == (1, 4):

@@ -9,6 +9,8 @@ from xml.etree.ElementTree import Element, ParseError
 import defusedxml
 import defusedxml.ElementTree as SafeET
 
+from turtle_sim_ode.physics import sanity
+
 # Far beyond any robot description; a larger text is refused before it is parsed.
 MAX_MODEL_CHARS = 10_000_000
 
@@ -53,7 +55,7 @@ def read_optional_number(text: Optional[str], what: str, minimum: float = -math.
     if not math.isfinite(value) or value < minimum:
         bound = f" >= {minimum:g}" if minimum > -math.inf else ""
         raise ModelError(f"{what} must be a finite number{bound}, got '{text}'")
-    return value
+    return sanity.number(value, what, error=ModelError)
 
 
 def read_number(text: Optional[str], what: str, default: Optional[float] = None, minimum: float = -math.inf) -> float:

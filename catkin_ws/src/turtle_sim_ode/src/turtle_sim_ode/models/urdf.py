@@ -1,11 +1,12 @@
 """Parse and validate a URDF string (no xacro, no file access) into plain dataclasses."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple, Union
 from xml.etree.ElementTree import Element
 
+from turtle_sim_ode.physics import sanity
+from turtle_sim_ode.physics.sanity import MAX_INERTIA, MAX_LENGTH, MAX_MASS, MIN_MASS
 from turtle_sim_ode.models.text import ModelError, parse_xml, read_number
 
 Vec3 = Tuple[float, float, float]
@@ -18,9 +19,6 @@ MAX_JOINTS = 1000
 MAX_COLLISIONS = 1000
 # Magnitude limits: lengths (offsets, sizes) in m, masses in kg, inertia entries in kg m^2. Beyond them ODE's
 # collision grid or integrator overflows and aborts the whole process (offsets of 1e12 m, inertias of 1e300).
-MAX_LENGTH = 1e6
-MAX_MASS = 1e9
-MAX_INERTIA = 1e12
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
 # Stand-in for a mesh collision: mesh files are never opened, so their size is unknown.
 MESH_PLACEHOLDER_EDGE = 0.01
@@ -213,6 +211,10 @@ def _check_mass(mass: float, inertia: Dict[str, float], what: str) -> None:
     """ModelError unless 0 < mass <= MAX_MASS and every inertia entry is within MAX_INERTIA."""
     if mass <= 0:
         raise ModelError(f"{what}: mass must be > 0, got {mass}")
+    if mass < MIN_MASS:
+        raise ModelError(
+            f"{what}: mass must be at least {MIN_MASS:g} kg (fix lighter links to a heavier one), got {mass}"
+        )
     _bounded(mass, MAX_MASS, f"{what}: mass (kg)")
     for key, value in inertia.items():
         _bounded(value, MAX_INERTIA, f"{what}: {key} (kg m^2)")
@@ -307,9 +309,8 @@ def _parse_joint(element: Element) -> Joint:
         raise ModelError(f"{what}: needs <parent link=...> and <child link=...>")
     axis_element = element.find("axis")
     axis = _vec3(None if axis_element is None else axis_element.get("xyz"), f"{what} axis", (1.0, 0.0, 0.0))
-    norm = math.sqrt(sum(a * a for a in axis))
-    if joint_type != "fixed" and norm < 1e-9:
-        raise ModelError(f"{what}: axis must not be zero")
+    if joint_type != "fixed":
+        axis = sanity.unit_vector(axis, f"{what}: axis", ModelError)
     limit = element.find("limit")
     limits = None
     if limit is not None:
@@ -327,7 +328,7 @@ def _parse_joint(element: Element) -> Joint:
         _required(parent, "link", f"{what} <parent>"),
         _required(child, "link", f"{what} <child>"),
         _pose(element.find("origin"), what),
-        tuple(a / norm for a in axis) if norm > 0 else axis,  # type: ignore[arg-type]
+        axis,
         limits,
         JointDynamics()
         if dynamics is None
