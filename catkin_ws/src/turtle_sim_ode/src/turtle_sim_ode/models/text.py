@@ -34,6 +34,15 @@ def parse_xml(text: str, kind: str) -> Element:
         raise ModelError(f"{kind} rejected by the XML guard: {error}") from None
 
 
+def required_attribute(element: Element, attribute: str, what: str) -> str:
+    value = element.get(attribute)
+    if value is None:
+        raise ModelError(f"{what}: missing attribute '{attribute}'")
+    if not value.strip():
+        raise ModelError(f"{what}: attribute '{attribute}' is empty")
+    return value
+
+
 def child_text(element: Optional[Element], path: str) -> Optional[str]:
     """The stripped text of ``element``'s child at ``path``; None where there is no element, child or text."""
     found = None if element is None else element.find(path)

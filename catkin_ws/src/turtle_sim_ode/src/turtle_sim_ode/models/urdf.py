@@ -7,7 +7,7 @@ from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.sanity import MAX_INERTIA, MAX_LENGTH, MAX_MASS, MIN_MASS
-from turtle_sim_ode.models.text import ModelError, parse_xml, read_number
+from turtle_sim_ode.models.text import ModelError, parse_xml, read_number, required_attribute
 
 Vec3 = Tuple[float, float, float]
 
@@ -193,13 +193,6 @@ def _pose(element: Optional[Element], what: str) -> Pose:
     )
 
 
-def _required(element: Element, attribute: str, what: str) -> str:
-    value = element.get(attribute)
-    if not value:
-        raise ModelError(f"{what}: missing attribute '{attribute}'")
-    return value
-
-
 def _positive(value: float, what: str) -> float:
     """A length: > 0 and at most MAX_LENGTH metres."""
     if value <= 0:
@@ -283,7 +276,7 @@ def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) 
 
 
 def _parse_link(element: Element, warnings: List[str]) -> Link:
-    name = _required(element, "name", "<link>")
+    name = required_attribute(element, "name", "<link>")
     inertial = element.find("inertial")
     link = Link(name, _parse_inertial(inertial, name) if inertial is not None else None)
     for index, collision in enumerate(element.findall("collision")):
@@ -298,10 +291,10 @@ def _parse_link(element: Element, warnings: List[str]) -> Link:
     return link
 
 
-def _parse_joint(element: Element) -> Joint:
-    name = _required(element, "name", "<joint>")
+def _parse_joint(element: Element, warnings: List[str]) -> Joint:
+    name = required_attribute(element, "name", "<joint>")
     what = f"joint '{name}'"
-    joint_type = _required(element, "type", what)
+    joint_type = required_attribute(element, "type", what)
     if joint_type not in JOINT_TYPES:
         raise ModelError(f"{what}: unsupported type '{joint_type}' (supported: {JOINT_TYPES})")
     parent, child = element.find("parent"), element.find("child")
@@ -322,11 +315,17 @@ def _parse_joint(element: Element) -> Joint:
     elif joint_type in ("revolute", "prismatic"):
         raise ModelError(f"{what}: a {joint_type} joint needs <limit>")
     dynamics = element.find("dynamics")
+    mimic = element.find("mimic")
+    if mimic is not None:
+        required_attribute(mimic, "joint", f"{what} <mimic>")
+        for key, default in (("multiplier", "1"), ("offset", "0")):
+            read_number(mimic.get(key, default), f"{what} <mimic> {key}")
+        warnings.append(f"{what}: <mimic> is not simulated; the joint moves on its own")
     return Joint(
         name,
         joint_type,
-        _required(parent, "link", f"{what} <parent>"),
-        _required(child, "link", f"{what} <child>"),
+        required_attribute(parent, "link", f"{what} <parent>"),
+        required_attribute(child, "link", f"{what} <child>"),
         _pose(element.find("origin"), what),
         axis,
         limits,
@@ -352,7 +351,7 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
         for plugin in element.findall("plugin"):
             model.plugins.append(
                 GazeboPlugin(
-                    _required(plugin, "filename", "<gazebo><plugin>"),
+                    required_attribute(plugin, "filename", "<gazebo><plugin>"),
                     plugin.get("name", ""),
                     {child.tag: (child.text or "").strip() for child in plugin},
                 )
@@ -423,7 +422,7 @@ def parse_urdf(text: str) -> RobotModel:
     robot = parse_xml(text, "URDF")
     if robot.tag != "robot":
         raise ModelError(f"URDF root element must be <robot>, got <{robot.tag}>")
-    name = _required(robot, "name", "<robot>")
+    name = required_attribute(robot, "name", "<robot>")
     link_elements, joint_elements = robot.findall("link"), robot.findall("joint")
     if not link_elements:
         raise ModelError("URDF has no <link>")
@@ -437,7 +436,7 @@ def parse_urdf(text: str) -> RobotModel:
         links[link.name] = link
     joints: Dict[str, Joint] = {}
     for element in joint_elements:
-        joint = _parse_joint(element)
+        joint = _parse_joint(element, warnings)
         if joint.name in joints:
             raise ModelError(f"duplicate joint name '{joint.name}'")
         joints[joint.name] = joint

@@ -650,6 +650,9 @@ class WorldControl:
                 f"effort {effort:g} on joint '{joint}' must be at most {limit:.3g} in magnitude: it would accelerate "
                 f"what the joint moves beyond {sanity.MAX_JOINT_ACCELERATION:g} per s^2"
             )
+        limits = model.robot.joints[handle.name].limits
+        if limits is not None and limits.effort > 0:  # Gazebo truncates a joint's force to its effort limit
+            effort = max(-limits.effort, min(limits.effort, effort))
         start, end = self._schedule(start_time, duration)
         add = handle.joint.addForce if handle.type == "prismatic" else handle.joint.addTorque
         self.loads.append(Load("effort", model.name, handle.name, lambda: add(effort), start, end))
