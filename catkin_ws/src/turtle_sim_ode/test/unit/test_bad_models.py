@@ -147,7 +147,7 @@ def urdf_with(inertia='ixx="0.01" iyy="0.01" izz="0.01"', collision=COLLISION, m
     [
         (urdf_with(mass="0"), "mass must be > 0, got 0"),
         (urdf_with(mass="-1"), "mass must be > 0, got -1"),
-        (urdf_with(mass="1e300"), r"mass \(kg\) must be at most 1e\+09 in magnitude"),
+        (urdf_with(mass="1e300"), r"mass \(kg\) must be at most 100000 in magnitude"),
         (urdf_with('ixx="1e300" iyy="1e300" izz="1e300"'), r"ixx \(kg m\^2\) must be at most 1e\+12"),
         (urdf_with('ixx="1" iyy="1" izz="-1"'), "not positive definite"),
         (
@@ -192,7 +192,7 @@ def test_absurd_urdf_numbers_are_refused(urdf, message):
 @pytest.mark.parametrize(
     "replace, message",
     [
-        (("<mass>1</mass>", "<mass>1e300</mass>"), r"mass \(kg\) must be at most 1e\+09"),
+        (("<mass>1</mass>", "<mass>1e300</mass>"), r"mass \(kg\) must be at most 100000"),
         (("<size>0.2 0.2 0.2</size>", "<size>0.2 1e300 0.2</size>"), r"<size> \(m\) must be at most 1e\+06"),
         (('<link name="box">', '<link name="box"><pose>1e300 0 0 0 0 0</pose>'), r"<pose> x y z \(m\) must be"),
     ],

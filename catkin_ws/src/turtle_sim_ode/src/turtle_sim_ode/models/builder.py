@@ -10,6 +10,7 @@ import ode
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, Pose, RobotModel, Sphere
 from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.world import PhysicsWorld, SurfaceParams
 
 Vec3 = Tuple[float, float, float]
@@ -107,6 +108,25 @@ class JointHandle:
             return self.joint.getPosition()
         return self.joint.getAngle()
 
+    def moved_inertia(self) -> float:
+        """The inertia the joint's effort accelerates (kg m^2 about a hinge's axis, kg along a slider): its two
+        bodies in series, a static side counting as infinite."""
+        axis = self.joint.getAxis()
+        inverse_sum = 0.0
+        for index in (0, 1):
+            body = self.joint.getBody(index)
+            if body is None:
+                continue
+            mass = body.getMass()
+            if self.type == "prismatic":
+                inverse_sum += 1.0 / mass.mass
+                continue
+            w, x, y, z = body.getQuaternion()
+            local = quat_rotate((w, -x, -y, -z), axis)
+            moment = sum(local[i] * mass.I[i][j] * local[j] for i in range(3) for j in range(3))
+            inverse_sum += 1.0 / moment
+        return 1.0 / inverse_sum if inverse_sum > 0 else math.inf
+
     def rate(self) -> float:
         """Joint velocity (rad/s or m/s)."""
         if self.type == "prismatic":
@@ -176,6 +196,7 @@ class BuiltModel:
         self.geoms = geoms  # link name -> its collision geoms, in URDF order
         self.joints = joints
         self.bodies = bodies
+        self.warnings: List[str] = []  # what building changed to keep the model sane, for the spawn's answer
         self._physics = physics
         self._space: Optional[ode.SpaceBase] = space
         continuous = [j for j in joints.values() if j.type == "continuous"]
@@ -247,6 +268,28 @@ class BuiltModel:
                 geom.setPosition(position)
                 geom.setQuaternion(quaternion)
             self.links = {name: LinkFrame(None, compose(move, frame.offset)) for name, frame in self.links.items()}
+
+    def extent(self, body: ode.Body) -> float:
+        """How far the collisions of ``body`` reach from its centre of mass (m; 0 without collisions)."""
+        centre = body.getPosition()
+        reach = 0.0
+        for geom in (geom for link_geoms in self.geoms.values() for geom in link_geoms):
+            if geom.getBody() is not body:
+                continue
+            x0, x1, y0, y1, z0, z1 = geom.getAABB()
+            reach = max(
+                reach,
+                math.sqrt(
+                    max((x0 - centre[0]) ** 2, (x1 - centre[0]) ** 2)
+                    + max((y0 - centre[1]) ** 2, (y1 - centre[1]) ** 2)
+                    + max((z0 - centre[2]) ** 2, (z1 - centre[2]) ** 2)
+                ),
+            )
+        return reach
+
+    def damping_entries(self) -> List[Tuple[JointHandle, float]]:
+        """(joint, viscous damping coefficient) of every damped joint."""
+        return list(self._damping)
 
     def damping(self, joint: str) -> float:
         """Viscous damping coefficient of a movable joint (0 if none)."""
@@ -516,6 +559,7 @@ def build_model(
 
         joints: Dict[str, JointHandle] = {}
         damping: List[Tuple[JointHandle, float]] = []
+        stop_warnings: List[str] = []
         for joint in robot.joints.values():
             if joint.type in ("fixed", "floating"):
                 continue
@@ -532,8 +576,15 @@ def build_model(
                 ode_joint.setAnchor(anchor)
             ode_joint.setAxis(axis)
             if joint.type != "continuous" and joint.limits is not None:
-                ode_joint.setParam(oc.PARAM_LO_STOP, joint.limits.lower)
-                ode_joint.setParam(oc.PARAM_HI_STOP, joint.limits.upper)
+                reach = sanity.MAX_HINGE_STOP if joint.type == "revolute" else sanity.MAX_LENGTH
+                if max(abs(joint.limits.lower), abs(joint.limits.upper)) <= reach:
+                    ode_joint.setParam(oc.PARAM_LO_STOP, joint.limits.lower)
+                    ode_joint.setParam(oc.PARAM_HI_STOP, joint.limits.upper)
+                else:
+                    stop_warnings.append(
+                        f"joint '{joint.name}': limits [{joint.limits.lower:g}, {joint.limits.upper:g}] are beyond "
+                        f"±{reach:.4g} and not enforced (ODE's hinge angle wraps at ±π)"
+                    )
             if joint.dynamics.friction > 0:
                 # Gazebo's joint friction: a zero-velocity motor limited to the friction force.
                 ode_joint.setParam(oc.PARAM_VEL, 0.0)
@@ -549,4 +600,56 @@ def build_model(
             physics.forget_body(body)
             body.disable()
         raise
-    return BuiltModel(physics, robot, space, list(bodies.values()), links, geoms, joints, damping)
+    model = BuiltModel(physics, robot, space, list(bodies.values()), links, geoms, joints, damping)
+    model.warnings = stop_warnings + _keep_sane(model, bodies, physics.time_step)
+    return model
+
+
+def _keep_sane(model: BuiltModel, bodies: Dict[str, ode.Body], time_step: float) -> List[str]:
+    """Raise moments of inertia too small for a body's reach and lower joint damping the step cannot integrate
+    (physics.sanity's bounds), as ODE would otherwise spin the body up or let it sink through the ground; a warning
+    for each change."""
+    warnings = []
+    for link, body in bodies.items():
+        mass = body.getMass()
+        floor = sanity.min_moment(mass.mass, model.extent(body))
+        lowest = sanity.principal_moments(mass.I)[0]
+        if lowest < floor:
+            diagonal = all(mass.I[i][j] == 0 for i in range(3) for j in range(3) if i != j)
+            # Principal axes on the body's: only the moments below the bound move; else all by the shortfall.
+            raised = [
+                [
+                    (max(mass.I[i][i], floor) if diagonal else mass.I[i][i] + floor - lowest)
+                    if i == j
+                    else mass.I[i][j]
+                    for j in range(3)
+                ]
+                for i in range(3)
+            ]
+            adjusted = ode.Mass()
+            adjusted.setParameters(
+                mass.mass,
+                0.0,
+                0.0,
+                0.0,
+                raised[0][0],
+                raised[1][1],
+                raised[2][2],
+                raised[0][1],
+                raised[0][2],
+                raised[1][2],
+            )
+            body.setMass(adjusted)
+            warnings.append(
+                f"link '{link}': smallest moment of inertia {lowest:.3g} kg m^2 is too small for a {mass.mass:g} kg "
+                f"body reaching {model.extent(body):.3g} m (ODE would spin it up); raised to {floor:.3g}"
+            )
+    for index, (handle, coefficient) in enumerate(model.damping_entries()):
+        stable = sanity.stable_damping(coefficient, handle.moved_inertia(), time_step)
+        if stable < coefficient:
+            model.set_damping(handle.name, stable)
+            warnings.append(
+                f"joint '{handle.name}': damping {coefficient:g} is unstable at a {time_step:g} s step on what it "
+                f"moves; lowered to {stable:.3g}"
+            )
+    return warnings

@@ -14,7 +14,15 @@ from typing import TYPE_CHECKING, Dict, List, Optional, Set, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
-from turtle_sim_ode.models.text import ModelError, child_text, parse_xml, read_number, read_optional_number
+from turtle_sim_ode.physics import sanity
+from turtle_sim_ode.models.text import (
+    ModelError,
+    child_text,
+    parse_xml,
+    required_attribute,
+    read_number,
+    read_optional_number,
+)
 from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
     MESH_PLACEHOLDER_EDGE,
@@ -184,13 +192,6 @@ def _bool(element: Element, path: str, what: str, default: bool) -> bool:
     raise ModelError(f"{what} <{path}>: expected true or false, got {text!r}")
 
 
-def _required(element: Element, attribute: str, what: str) -> str:
-    value = element.get(attribute)
-    if not value:
-        raise ModelError(f"{what}: missing attribute '{attribute}'")
-    return value
-
-
 def _pose(element: Element, what: str) -> Pose:
     """The <pose> child: "x y z roll pitch yaw" relative to the default frame."""
     pose = element.find("pose")
@@ -212,7 +213,7 @@ def _pose(element: Element, what: str) -> Pose:
 
 def _plugin(element: Element, what: str) -> GazeboPlugin:
     return GazeboPlugin(
-        _required(element, "filename", f"{what} <plugin>"),
+        required_attribute(element, "filename", f"{what} <plugin>"),
         element.get("name", ""),
         {child.tag: (child.text or "").strip() for child in element},
     )
@@ -329,7 +330,7 @@ def _parse_surface(element: Optional[Element], what: str) -> Dict[str, float]:
 
 def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link, Pose]:
     """The link and its pose in the model; its <surface> values go to ``model.surfaces``."""
-    name = _required(element, "name", "<link>")
+    name = required_attribute(element, "name", "<link>")
     what = f"link '{name}'"
     for flag, normal in (("kinematic", False), ("gravity", True)):
         if not static and _bool(element, flag, what, normal) != normal:
@@ -360,11 +361,9 @@ def _axis(
     element: Element, what: str, version: Version, joint_in_model: Transform, link_poses: Dict[str, Transform]
 ) -> Vec3:
     """The unit joint axis in the joint frame, whatever frame the SDF version writes it in."""
-    xyz = _vec3(child_text(element, "xyz"), f"{what} <axis><xyz>", (0.0, 0.0, 1.0))
-    norm = math.sqrt(sum(a * a for a in xyz))
-    if norm < 1e-9:
-        raise ModelError(f"{what}: axis must not be zero")
-    xyz = (xyz[0] / norm, xyz[1] / norm, xyz[2] / norm)
+    xyz = sanity.unit_vector(
+        _vec3(child_text(element, "xyz"), f"{what} <axis><xyz>", (0.0, 0.0, 1.0)), f"{what}: axis", ModelError
+    )
     # 1.4: always the model frame. 1.5, 1.6: the joint frame unless <use_parent_model_frame>.
     # 1.7: the joint frame unless <xyz expressed_in="__model__" or a link name>.
     if version == (1, 4):
@@ -387,9 +386,9 @@ def _axis(
 
 
 def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Transform], warnings: List[str]) -> Joint:
-    name = _required(element, "name", "<joint>")
+    name = required_attribute(element, "name", "<joint>")
     what = f"joint '{name}'"
-    joint_type = _required(element, "type", what)
+    joint_type = required_attribute(element, "type", what)
     if joint_type not in JOINT_TYPES:
         raise ModelError(f"{what}: unsupported type '{joint_type}' (supported: {JOINT_TYPES})")
     parent, child = child_text(element, "parent"), child_text(element, "child")
@@ -440,7 +439,7 @@ def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Trans
 
 def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
     """The model and its own <pose>."""
-    name = _required(element, "name", "<model>")
+    name = required_attribute(element, "name", "<model>")
     what = f"model '{name}'"
     for nested in ("model", "include"):
         if element.find(nested) is not None:

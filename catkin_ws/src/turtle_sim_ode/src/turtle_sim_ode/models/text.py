@@ -9,6 +9,8 @@ from xml.etree.ElementTree import Element, ParseError
 import defusedxml
 import defusedxml.ElementTree as SafeET
 
+from turtle_sim_ode.physics import sanity
+
 # Far beyond any robot description; a larger text is refused before it is parsed.
 MAX_MODEL_CHARS = 10_000_000
 
@@ -32,6 +34,15 @@ def parse_xml(text: str, kind: str) -> Element:
         raise ModelError(f"{kind} rejected by the XML guard: {error}") from None
 
 
+def required_attribute(element: Element, attribute: str, what: str) -> str:
+    value = element.get(attribute)
+    if value is None:
+        raise ModelError(f"{what}: missing attribute '{attribute}'")
+    if not value.strip():
+        raise ModelError(f"{what}: attribute '{attribute}' is empty")
+    return value
+
+
 def child_text(element: Optional[Element], path: str) -> Optional[str]:
     """The stripped text of ``element``'s child at ``path``; None where there is no element, child or text."""
     found = None if element is None else element.find(path)
@@ -53,7 +64,7 @@ def read_optional_number(text: Optional[str], what: str, minimum: float = -math.
     if not math.isfinite(value) or value < minimum:
         bound = f" >= {minimum:g}" if minimum > -math.inf else ""
         raise ModelError(f"{what} must be a finite number{bound}, got '{text}'")
-    return value
+    return sanity.number(value, what, error=ModelError)
 
 
 def read_number(text: Optional[str], what: str, default: Optional[float] = None, minimum: float = -math.inf) -> float:

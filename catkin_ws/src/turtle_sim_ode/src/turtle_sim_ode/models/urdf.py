@@ -1,12 +1,13 @@
 """Parse and validate a URDF string (no xacro, no file access) into plain dataclasses."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple, Union
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, parse_xml, read_number
+from turtle_sim_ode.physics import sanity
+from turtle_sim_ode.physics.sanity import MAX_INERTIA, MAX_LENGTH, MAX_MASS, MIN_MASS
+from turtle_sim_ode.models.text import ModelError, parse_xml, read_number, required_attribute
 
 Vec3 = Tuple[float, float, float]
 
@@ -18,9 +19,6 @@ MAX_JOINTS = 1000
 MAX_COLLISIONS = 1000
 # Magnitude limits: lengths (offsets, sizes) in m, masses in kg, inertia entries in kg m^2. Beyond them ODE's
 # collision grid or integrator overflows and aborts the whole process (offsets of 1e12 m, inertias of 1e300).
-MAX_LENGTH = 1e6
-MAX_MASS = 1e9
-MAX_INERTIA = 1e12
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
 # Stand-in for a mesh collision: mesh files are never opened, so their size is unknown.
 MESH_PLACEHOLDER_EDGE = 0.01
@@ -195,13 +193,6 @@ def _pose(element: Optional[Element], what: str) -> Pose:
     )
 
 
-def _required(element: Element, attribute: str, what: str) -> str:
-    value = element.get(attribute)
-    if not value:
-        raise ModelError(f"{what}: missing attribute '{attribute}'")
-    return value
-
-
 def _positive(value: float, what: str) -> float:
     """A length: > 0 and at most MAX_LENGTH metres."""
     if value <= 0:
@@ -213,6 +204,10 @@ def _check_mass(mass: float, inertia: Dict[str, float], what: str) -> None:
     """ModelError unless 0 < mass <= MAX_MASS and every inertia entry is within MAX_INERTIA."""
     if mass <= 0:
         raise ModelError(f"{what}: mass must be > 0, got {mass}")
+    if mass < MIN_MASS:
+        raise ModelError(
+            f"{what}: mass must be at least {MIN_MASS:g} kg (fix lighter links to a heavier one), got {mass}"
+        )
     _bounded(mass, MAX_MASS, f"{what}: mass (kg)")
     for key, value in inertia.items():
         _bounded(value, MAX_INERTIA, f"{what}: {key} (kg m^2)")
@@ -281,7 +276,7 @@ def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) 
 
 
 def _parse_link(element: Element, warnings: List[str]) -> Link:
-    name = _required(element, "name", "<link>")
+    name = required_attribute(element, "name", "<link>")
     inertial = element.find("inertial")
     link = Link(name, _parse_inertial(inertial, name) if inertial is not None else None)
     for index, collision in enumerate(element.findall("collision")):
@@ -296,10 +291,10 @@ def _parse_link(element: Element, warnings: List[str]) -> Link:
     return link
 
 
-def _parse_joint(element: Element) -> Joint:
-    name = _required(element, "name", "<joint>")
+def _parse_joint(element: Element, warnings: List[str]) -> Joint:
+    name = required_attribute(element, "name", "<joint>")
     what = f"joint '{name}'"
-    joint_type = _required(element, "type", what)
+    joint_type = required_attribute(element, "type", what)
     if joint_type not in JOINT_TYPES:
         raise ModelError(f"{what}: unsupported type '{joint_type}' (supported: {JOINT_TYPES})")
     parent, child = element.find("parent"), element.find("child")
@@ -307,9 +302,8 @@ def _parse_joint(element: Element) -> Joint:
         raise ModelError(f"{what}: needs <parent link=...> and <child link=...>")
     axis_element = element.find("axis")
     axis = _vec3(None if axis_element is None else axis_element.get("xyz"), f"{what} axis", (1.0, 0.0, 0.0))
-    norm = math.sqrt(sum(a * a for a in axis))
-    if joint_type != "fixed" and norm < 1e-9:
-        raise ModelError(f"{what}: axis must not be zero")
+    if joint_type != "fixed":
+        axis = sanity.unit_vector(axis, f"{what}: axis", ModelError)
     limit = element.find("limit")
     limits = None
     if limit is not None:
@@ -321,13 +315,19 @@ def _parse_joint(element: Element) -> Joint:
     elif joint_type in ("revolute", "prismatic"):
         raise ModelError(f"{what}: a {joint_type} joint needs <limit>")
     dynamics = element.find("dynamics")
+    mimic = element.find("mimic")
+    if mimic is not None:
+        required_attribute(mimic, "joint", f"{what} <mimic>")
+        for key, default in (("multiplier", "1"), ("offset", "0")):
+            read_number(mimic.get(key, default), f"{what} <mimic> {key}")
+        warnings.append(f"{what}: <mimic> is not simulated; the joint moves on its own")
     return Joint(
         name,
         joint_type,
-        _required(parent, "link", f"{what} <parent>"),
-        _required(child, "link", f"{what} <child>"),
+        required_attribute(parent, "link", f"{what} <parent>"),
+        required_attribute(child, "link", f"{what} <child>"),
         _pose(element.find("origin"), what),
-        tuple(a / norm for a in axis) if norm > 0 else axis,  # type: ignore[arg-type]
+        axis,
         limits,
         JointDynamics()
         if dynamics is None
@@ -351,7 +351,7 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
         for plugin in element.findall("plugin"):
             model.plugins.append(
                 GazeboPlugin(
-                    _required(plugin, "filename", "<gazebo><plugin>"),
+                    required_attribute(plugin, "filename", "<gazebo><plugin>"),
                     plugin.get("name", ""),
                     {child.tag: (child.text or "").strip() for child in plugin},
                 )
@@ -422,7 +422,7 @@ def parse_urdf(text: str) -> RobotModel:
     robot = parse_xml(text, "URDF")
     if robot.tag != "robot":
         raise ModelError(f"URDF root element must be <robot>, got <{robot.tag}>")
-    name = _required(robot, "name", "<robot>")
+    name = required_attribute(robot, "name", "<robot>")
     link_elements, joint_elements = robot.findall("link"), robot.findall("joint")
     if not link_elements:
         raise ModelError("URDF has no <link>")
@@ -436,7 +436,7 @@ def parse_urdf(text: str) -> RobotModel:
         links[link.name] = link
     joints: Dict[str, Joint] = {}
     for element in joint_elements:
-        joint = _parse_joint(element)
+        joint = _parse_joint(element, warnings)
         if joint.name in joints:
             raise ModelError(f"duplicate joint name '{joint.name}'")
         joints[joint.name] = joint

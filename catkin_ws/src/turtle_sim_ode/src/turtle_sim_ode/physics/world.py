@@ -10,9 +10,12 @@ from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequenc
 import ode
 
 from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.contact_kernel import ContactKernel
 
 SOLVERS = ("quick", "world")
+# The softest contact stiffness (N/m): softer holds no mass up, and its inverse overflows the contact arithmetic.
+MIN_KP = 1.0
 # Gravity (m/s² per axis) beyond which resting bodies tunnel through the ground and fall until ODE aborts (1e6 does).
 MAX_GRAVITY = 1e3
 
@@ -77,8 +80,8 @@ class SurfaceParams:
             value = getattr(self, attr)
             if not _finite(value) or value < 0:
                 raise ValueError(f"{name}.{attr} must be finite and >= 0, got {value!r}")
-        if not _finite(self.kp) or self.kp <= 0:
-            raise ValueError(f"{name}.kp must be finite and > 0, got {self.kp!r}")
+        if not _finite(self.kp) or self.kp < MIN_KP:
+            raise ValueError(f"{name}.kp must be finite and >= {MIN_KP:g} N/m, got {self.kp!r}")
 
 
 def combine_surfaces(a: SurfaceParams, b: SurfaceParams, time_step: float) -> ContactSurface:
@@ -122,6 +125,11 @@ class PhysicsParams:
         """Raise ValueError naming the bad field and its value."""
         if not _finite(self.time_step) or not 0 < self.time_step <= 0.1:
             raise ValueError(f"time_step must be in (0, 0.1] s, got {self.time_step!r}")
+        if self.time_step < sanity.MIN_TIME_STEP:
+            raise ValueError(
+                f"time_step must be at least {sanity.MIN_TIME_STEP:g} s (shorter steps cannot keep /clock moving at "
+                f"any useful rate), got {self.time_step!r}"
+            )
         if self.solver not in SOLVERS:
             raise ValueError(f"solver must be one of {SOLVERS}, got {self.solver!r}")
         if (

@@ -29,6 +29,7 @@ from turtle_sim_ode.models.builder import (
 )
 from turtle_sim_ode.models.urdf import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
 from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsWorld
 from turtle_sim_ode.world.records import (
     JointProperties,
@@ -190,12 +191,18 @@ class WorldControl:
 
     def _joint(self, name: str) -> Tuple[BuiltModel, JointHandle]:
         model_name, scope, joint = name.partition(SCOPE)
-        model = self.models.get(model_name) if scope else None
-        if model is not None and joint in model.joints:
-            return model, model.joints[joint]
+        scoped = self.models.get(model_name) if scope else None
+        if scoped is not None and joint in scoped.joints:
+            return scoped, scoped.joints[joint]
         for model in self.models.values():
             if name in model.joints:
                 return model, model.joints[name]
+        for model, fixed in [(scoped, joint)] if scoped is not None else [(m, name) for m in self.models.values()]:
+            if fixed in model.robot.joints:
+                raise WorldError(
+                    f"joint '{name}' is a fixed joint of model '{model.name}': it was merged into its parent body "
+                    f"(as Gazebo does), so it has no position, properties or effort"
+                )
         raise WorldError(f"joint '{name}' does not exist")
 
     def _frame(self, name: str) -> Frame:
@@ -372,6 +379,16 @@ class WorldControl:
                 f"inertia must be positive definite, got ixx={ixx}, ixy={ixy}, "
                 f"ixz={ixz}, iyy={iyy}, iyz={iyz}, izz={izz}"
             )
+        if mass < sanity.MIN_MASS:
+            raise WorldError(f"mass must be at least {sanity.MIN_MASS:g} kg, got {mass}")
+        floor = sanity.min_moment(mass, model.extent(body))
+        lowest = sanity.principal_moments(matrix)[0]
+        if lowest < floor:
+            raise WorldError(
+                f"inertia of link '{name}' is too small for a {mass:g} kg body reaching {model.extent(body):.3g} m: "
+                f"its smallest principal moment {lowest:.3g} kg m^2 must be at least {floor:.3g} (ODE would spin "
+                f"the body up and let it sink through the ground)"
+            )
         model.set_mass(link, mass, com, _rotated_inertia(rotation, matrix))
         body.setGravityMode(bool(gravity_mode))
 
@@ -423,6 +440,11 @@ class WorldControl:
             if key in ("hiStop", "loStop"):
                 if isinstance(value, bool) or not isinstance(value, (int, float)) or math.isnan(value):
                     raise WorldError(f"{key} must be a number, got {value!r}")
+                if handle.type == "prismatic":
+                    if math.isfinite(value):
+                        finite(value, key, MAX_LENGTH)
+                else:
+                    sanity.hinge_stop(value, key, WorldError)
                 values[key] = float(value)
                 continue
             values[key] = finite(value, key, _JOINT_LIMITS.get(key, math.inf))
@@ -430,6 +452,20 @@ class WorldControl:
                 raise WorldError(f"{key} must be in [0, 1], got {values[key]}")
             if key in ("damping", "cfm", "stop_cfm", "fmax") and values[key] < 0:
                 raise WorldError(f"{key} must be >= 0, got {values[key]}")
+        driven = [robot for robot in self.robots.values() if handle in (robot.left, robot.right)]
+        overridden = sorted({"vel", "fmax"} & set(values))
+        if driven and overridden:
+            raise WorldError(
+                f"joint '{name}' is a wheel of the drive plugin of model '{driven[0].model.name}', which sets its "
+                f"motor ({', '.join(overridden)}) every step: command the drive instead"
+            )
+        if "damping" in values:
+            stable = sanity.stable_damping(values["damping"], handle.moved_inertia(), self.physics.time_step)
+            if stable < values["damping"]:
+                raise WorldError(
+                    f"damping {values['damping']:g} on joint '{name}' is unstable at a {self.physics.time_step:g} s "
+                    f"step: at most {stable:.3g} for what the joint moves"
+                )
         joint = handle.joint
         low = values.get("loStop", joint.getParam(oc.PARAM_LO_STOP))
         high = values.get("hiStop", joint.getParam(oc.PARAM_HI_STOP))
@@ -534,6 +570,13 @@ class WorldControl:
             if joint not in model.joints:
                 raise WorldError(f"model '{model_name}' has no joint '{name}'")
             targets[joint] = finite(position, f"position of joint '{name}'", MAX_LENGTH)
+            handle = model.joints[joint].joint
+            if model.joints[joint].type != "continuous":
+                low, high = handle.getParam(oc.PARAM_LO_STOP), handle.getParam(oc.PARAM_HI_STOP)
+                if not low <= targets[joint] <= high:
+                    raise WorldError(
+                        f"position {position:g} of joint '{name}' is outside its limits [{low:g}, {high:g}]"
+                    )
         if not targets:
             return
         _set_configuration(model, targets)
@@ -601,6 +644,15 @@ class WorldControl:
         increasing position, scheduled as ``apply_body_wrench``."""
         model, handle = self._joint(joint)
         effort = finite(effort, "effort", MAX_FORCE)
+        limit = sanity.effort_limit(handle.moved_inertia())
+        if abs(effort) > limit:
+            raise WorldError(
+                f"effort {effort:g} on joint '{joint}' must be at most {limit:.3g} in magnitude: it would accelerate "
+                f"what the joint moves beyond {sanity.MAX_JOINT_ACCELERATION:g} per s^2"
+            )
+        limits = model.robot.joints[handle.name].limits
+        if limits is not None and limits.effort > 0:  # Gazebo truncates a joint's force to its effort limit
+            effort = max(-limits.effort, min(limits.effort, effort))
         start, end = self._schedule(start_time, duration)
         add = handle.joint.addForce if handle.type == "prismatic" else handle.joint.addTorque
         self.loads.append(Load("effort", model.name, handle.name, lambda: add(effort), start, end))

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Dict, Mapping, Tuple
 
 from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics import sanity
 
 if TYPE_CHECKING:  # only for annotations: odometry needs no ODE
     import ode
@@ -32,6 +33,10 @@ class DiffDriveParams:
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or math.isnan(value) or value <= 0:
                 raise ValueError(f"{name} must be > 0, got {value!r}")
+        # Finite and sane: an infinite separation made ODE abort, an infinite diameter gave NaN odometry.
+        sanity.drive_length(self.wheel_separation, "wheel_separation")
+        sanity.drive_length(2 * self.wheel_radius, "wheel diameter")
+        sanity.number(self.max_wheel_torque, "max_wheel_torque (N m)", 0.0, sanity.MAX_FORCE)
         for name in ("max_wheel_acceleration", "cmd_timeout"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or math.isnan(value) or value < 0:

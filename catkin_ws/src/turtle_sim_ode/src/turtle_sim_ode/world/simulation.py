@@ -97,7 +97,7 @@ class Simulation(WorldControl):
         sensors = model_sensors(robot)
         model = build_model(self.physics, robot, self._spawn_pose(pose, reference_frame))
         model.name = name
-        warnings = list(robot.warnings)
+        warnings = list(robot.warnings) + model.warnings
         try:
             plugins = read_plugins(name, robot.plugins, self._drive_overrides, list(model.joints))
             if len(plugins.drives) > 1:

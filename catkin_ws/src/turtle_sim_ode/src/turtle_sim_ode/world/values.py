@@ -6,12 +6,8 @@ import math
 from typing import Any, Sequence, Tuple
 
 from turtle_sim_ode.models.builder import Quat, Vec3
-
-# Limits on what a request may set, far beyond any robot's needs: positions within MAX_LENGTH (m) of the world
-# origin, speeds (m/s, rad/s) and forces (N, N m). Finite values beyond them make ODE abort the whole process
-# within a few steps (its collision grid takes coordinates below ~1e8 m; a 1e300 N push overflows).
-MAX_SPEED = 1e4
-MAX_FORCE = 1e6
+from turtle_sim_ode.physics import sanity
+from turtle_sim_ode.physics.sanity import MAX_FORCE, MAX_SPEED  # noqa: F401 (the request limits, for callers)
 
 
 class WorldError(ValueError):
@@ -24,7 +20,7 @@ def finite(value: object, what: str, limit: float = math.inf) -> float:
         raise WorldError(f"{what} must be a finite number, got {value!r}")
     if abs(value) > limit:
         raise WorldError(f"{what} must be at most {limit:g} in magnitude, got {value!r}")
-    return float(value)
+    return sanity.number(value, what, error=WorldError)
 
 
 def vector(values: Any, size: int, what: str, limit: float = math.inf) -> Tuple[float, ...]:
@@ -39,7 +35,7 @@ def vector(values: Any, size: int, what: str, limit: float = math.inf) -> Tuple[
         raise WorldError(f"{what} must be {size} finite numbers, got {values!r}")
     if any(abs(v) > limit for v in values):
         raise WorldError(f"{what} must be at most {limit:g} in magnitude on each axis, got {tuple(values)!r}")
-    return tuple(float(v) for v in values)
+    return tuple(sanity.number(v, what, error=WorldError) for v in values)
 
 
 def vec3(values: Any, what: str, limit: float = math.inf) -> Vec3:
@@ -67,7 +63,7 @@ def update_rate(value: object, what: str) -> float:
     rate = finite(value, what)
     if rate < 0:
         raise WorldError(f"{what} must be >= 0, got {rate}")
-    return rate
+    return sanity.update_rate(rate, what, WorldError)
 
 
 def integer(value: object, what: str) -> int:
