@@ -14,7 +14,6 @@ Each entry of ~cases becomes one test:
 import os
 import re
 import shlex
-import signal
 import subprocess
 import sys
 import threading
@@ -22,6 +21,7 @@ import unittest
 
 import rospy
 import rostest
+from workspace_testing.processes import stop_group as stop
 
 
 class CommandOutput:
@@ -45,19 +45,6 @@ class CommandOutput:
 
     def finish(self, timeout: float) -> None:
         self._thread.join(timeout)
-
-
-def stop(process: subprocess.Popen) -> None:
-    """SIGINT the command's process group (roslaunch shuts its nodes down on it), then SIGKILL what is left."""
-    for sig, grace in ((signal.SIGINT, 15.0), (signal.SIGKILL, 5.0)):
-        try:
-            os.killpg(process.pid, sig)
-            process.wait(grace)
-            return
-        except ProcessLookupError:
-            return
-        except subprocess.TimeoutExpired:
-            continue
 
 
 def run_case(test: unittest.TestCase, case: dict) -> None:

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import os
 import shlex
-import signal
 import subprocess
 import sys
 import threading
@@ -16,21 +15,9 @@ import rospy
 import rostest
 
 from turtlesim.msg import Pose
+from workspace_testing.processes import stop_group as stop
 
 ENV = {k: v for k, v in os.environ.items() if k != "DISPLAY"}  # headless: no window to open here
-
-
-def stop(process: subprocess.Popen) -> None:
-    """SIGINT the process group (roslaunch stops its nodes on it), then SIGKILL what is left."""
-    for sig, grace in ((signal.SIGINT, 20.0), (signal.SIGKILL, 5.0)):
-        try:
-            os.killpg(process.pid, sig)
-            process.wait(grace)
-            return
-        except ProcessLookupError:
-            return
-        except subprocess.TimeoutExpired:
-            continue
 
 
 class LastPoses:
@@ -107,7 +94,7 @@ class TurtleMimic(unittest.TestCase):
             self.assertAlmostEqual(b.theta, a.theta, delta=rospy.get_param("~angle_tolerance"))
         finally:
             poses.close()
-            stop(launch)
+            stop(launch, grace=20.0)
 
 
 if __name__ == "__main__":

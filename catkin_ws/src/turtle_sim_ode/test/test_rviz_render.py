@@ -2,7 +2,6 @@
 """rostest node: start Xvfb and rviz on the shipped config, take screenshots until the robot's blue shell shows
 in the middle of the 3D view (or time runs out), and keep the last screenshot as a PNG for people to look at."""
 import os
-import signal
 import subprocess
 import sys
 import tempfile
@@ -14,38 +13,14 @@ import numpy as np
 import rospy
 import rostest
 
-from turtle_sim_ode.analysis.xwd_image import read_xwd
+from workspace_testing.xwd_image import read_xwd
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from workspace_testing.processes import stop_group as stop
+from workspace_testing.screen import start_xvfb
 
 RVIZ_BACKGROUND = (48, 48, 48)
-
-
-def start_xvfb():
-    """Xvfb on a display number it picks itself (-displayfd), so parallel tests never collide."""
-    read_end, write_end = os.pipe()
-    server = subprocess.Popen(
-        # -noreset: the server must not reset (and refuse connections) whenever its last client leaves.
-        ["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1024x768x24", "-nolisten", "tcp", "-noreset"],
-        pass_fds=(write_end,),
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )
-    os.close(write_end)
-    with os.fdopen(read_end) as display_number:
-        return server, ":" + display_number.readline().strip()
-
-
-def stop(process):
-    try:
-        os.killpg(process.pid, signal.SIGTERM)
-        process.wait(10)
-    except ProcessLookupError:
-        pass
-    except subprocess.TimeoutExpired:
-        os.killpg(process.pid, signal.SIGKILL)
 
 
 def robot_pixels(image):

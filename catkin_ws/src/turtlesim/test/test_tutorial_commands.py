@@ -8,7 +8,6 @@ import math
 import os
 import re
 import shlex
-import signal
 import subprocess
 import sys
 import tempfile
@@ -24,6 +23,7 @@ from std_srvs.srv import Empty
 
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Spawn, TeleportAbsolute
+from workspace_testing.processes import stop_group as stop
 
 WORLD_SIZE = 499 / 45.0
 CENTRE = WORLD_SIZE / 2.0
@@ -87,19 +87,6 @@ def start(command: str, env: Optional[dict] = None) -> subprocess.Popen:
         start_new_session=True,
         env=env or HEADLESS_ENV,
     )
-
-
-def stop(process: subprocess.Popen) -> None:
-    """SIGINT the process group (rosrun/roslaunch pass it on), then SIGKILL what is left."""
-    for sig, grace in ((signal.SIGINT, 15.0), (signal.SIGKILL, 5.0)):
-        try:
-            os.killpg(process.pid, sig)
-            process.wait(grace)
-            return
-        except ProcessLookupError:
-            return
-        except subprocess.TimeoutExpired:
-            continue
 
 
 def stopped(poses: List[Pose], count: int = 10) -> bool:

@@ -4,7 +4,6 @@ default pen colour where turtle1 went, one in a set_pen colour, and the drawn tu
 from __future__ import annotations
 
 import os
-import signal
 import subprocess
 import sys
 import tempfile
@@ -17,9 +16,11 @@ import rostest
 
 # The screenshot reader of the workspace's simulator. Not a <test_depend>: turtle_sim_ode test-depends on
 # beginner_tutorials, which runs turtlesim, so catkin would see a cycle; both are built in this workspace.
-from turtle_sim_ode.analysis.xwd_image import read_xwd
+from workspace_testing.xwd_image import read_xwd
 from turtlesim.msg import Pose
 from turtlesim.srv import SetPen, TeleportAbsolute
+from workspace_testing.processes import stop_group as stop
+from workspace_testing.screen import start_xvfb
 
 BACKGROUND = (69, 86, 255)
 PEN = (179, 184, 255)
@@ -27,34 +28,6 @@ RED = (255, 0, 0)
 CANVAS = 500
 PIXELS_PER_METRE = 45.0
 WORLD_SIZE = (CANVAS - 1) / PIXELS_PER_METRE
-
-
-def start_xvfb():
-    """Xvfb on a display number it picks itself (-displayfd), so parallel tests never collide; -noreset keeps it
-    accepting connections when its last client leaves."""
-    read_end, write_end = os.pipe()
-    server = subprocess.Popen(
-        ["Xvfb", "-displayfd", str(write_end), "-screen", "0", "800x600x24", "-nolisten", "tcp", "-noreset"],
-        pass_fds=(write_end,),
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )
-    os.close(write_end)
-    with os.fdopen(read_end) as display_number:
-        return server, ":" + display_number.readline().strip()
-
-
-def stop(process: subprocess.Popen) -> None:
-    for sig, grace in ((signal.SIGINT, 10.0), (signal.SIGKILL, 5.0)):
-        try:
-            os.killpg(process.pid, sig)
-            process.wait(grace)
-            return
-        except ProcessLookupError:
-            return
-        except subprocess.TimeoutExpired:
-            continue
 
 
 def matches(image: np.ndarray, colour, tolerance: int) -> np.ndarray:

@@ -1,1 +1,1 @@
-"""ROS-free helpers for demos and tests: circle fit, trajectory plot, X window dumps."""
+"""ROS-free helpers for demos, tests and the scripts: circle fit, trajectory plot, waiting on the wall clock."""

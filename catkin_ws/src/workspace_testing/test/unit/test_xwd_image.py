@@ -4,7 +4,7 @@ import struct
 import numpy as np
 import pytest
 
-from turtle_sim_ode.analysis.xwd_image import read_xwd
+from workspace_testing.xwd_image import read_xwd
 
 
 def make_dump(rgb, bits_per_pixel, byte_order=0):
