@@ -121,6 +121,8 @@ def test_hinge_limits_beyond_pi_in_model_text_are_not_enforced() -> None:
         ({"damping": [1000.0]}, "unstable"),
         ({"loStop": [5.0], "hiStop": [10.0]}, "within ±π"),
         ({"loStop": [-1e300], "hiStop": [1e301]}, "within ±π"),
+        ({"loStop": [math.inf]}, r"loStop may be infinite only as -inf"),  # found by test_fuzz: ODE aborted
+        ({"hiStop": [-math.inf]}, r"hiStop may be infinite only as \+inf"),
         ({"vel": [3.0]}, "drive plugin"),
         ({"fmax": [1e6]}, "drive plugin"),
     ],

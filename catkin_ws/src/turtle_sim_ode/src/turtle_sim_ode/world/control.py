@@ -440,6 +440,8 @@ class WorldControl:
             if key in ("hiStop", "loStop"):
                 if isinstance(value, bool) or not isinstance(value, (int, float)) or math.isnan(value):
                     raise WorldError(f"{key} must be a number, got {value!r}")
+                if math.isinf(value) and (value > 0) != (key == "hiStop"):  # +inf as loStop aborted ODE
+                    raise WorldError(f"{key} may be infinite only as {'+' if key == 'hiStop' else '-'}inf (no stop)")
                 if handle.type == "prismatic":
                     if math.isfinite(value):
                         finite(value, key, MAX_LENGTH)
