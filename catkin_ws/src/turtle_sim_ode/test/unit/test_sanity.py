@@ -121,6 +121,10 @@ def test_hinge_limits_beyond_pi_in_model_text_are_not_enforced() -> None:
         ({"damping": [1000.0]}, "unstable"),
         ({"loStop": [5.0], "hiStop": [10.0]}, "within ±π"),
         ({"loStop": [-1e300], "hiStop": [1e301]}, "within ±π"),
+        ({"loStop": [math.inf]}, r"loStop may be infinite only as -inf"),  # found by test_fuzz: ODE aborted
+        ({"hiStop": [-math.inf]}, r"hiStop may be infinite only as \+inf"),
+        ({"cfm": [1e308]}, "cfm must be at most 1"),  # found by test_fuzz: ODE aborted
+        ({"stop_cfm": [1e308]}, "stop_cfm must be at most 1"),
         ({"vel": [3.0]}, "drive plugin"),
         ({"fmax": [1e6]}, "drive plugin"),
     ],
@@ -189,6 +193,7 @@ def test_mass_properties_a_body_cannot_have_are_refused() -> None:
     "physics, message",
     [
         ({"max_update_rate": 1e-12}, "at least 0.001"),
+        ({"cfm": 1e308}, "cfm must be at most 1"),
         ({"max_update_rate": 5e-324}, "at least"),
         ({"time_step": 1e-9, "max_update_rate": 1e9}, r"max_update_rate must be in \[0, 1e\+07\]"),
         ({"time_step": 1e-9}, "time_step must be at least 1e-05 s"),

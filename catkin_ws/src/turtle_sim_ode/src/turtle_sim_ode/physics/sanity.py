@@ -34,6 +34,8 @@ MAX_DAMPING_STEP_RATIO = 1.0
 # An effort may accelerate the lighter side of a joint by at most this (rad/s^2 or m/s^2): a velocity change of
 # 1000 (rad/s or m/s) within a 1 ms step. Past it one push flips a TurtleBot into the sky.
 MAX_JOINT_ACCELERATION = 1e6
+# Constraint force mixing (global, a joint's, a stop's): beyond 1 a constraint holds nothing, and 1e308 aborts ODE.
+MAX_CFM = 1.0
 # ODE's hinge angle wraps at +-pi: a stop beyond it is never reached, or flips the joint onto the other stop.
 MAX_HINGE_STOP = math.pi
 # Steps of the world (s): shorter ones never get /clock to advance at any useful rate.

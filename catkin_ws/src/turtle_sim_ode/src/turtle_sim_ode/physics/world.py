@@ -144,6 +144,8 @@ class PhysicsParams:
             raise ValueError(f"erp must be in [0, 1], got {self.erp!r}")
         if not _finite(self.cfm) or self.cfm < 0:
             raise ValueError(f"cfm must be finite and >= 0, got {self.cfm!r}")
+        if self.cfm > sanity.MAX_CFM:
+            raise ValueError(f"cfm must be at most {sanity.MAX_CFM:g}, got {self.cfm!r}")
         if (
             not isinstance(self.max_contacts, int)
             or isinstance(self.max_contacts, bool)

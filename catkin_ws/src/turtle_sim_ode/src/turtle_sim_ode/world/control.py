@@ -440,6 +440,8 @@ class WorldControl:
             if key in ("hiStop", "loStop"):
                 if isinstance(value, bool) or not isinstance(value, (int, float)) or math.isnan(value):
                     raise WorldError(f"{key} must be a number, got {value!r}")
+                if math.isinf(value) and (value > 0) != (key == "hiStop"):  # +inf as loStop aborted ODE
+                    raise WorldError(f"{key} may be infinite only as {'+' if key == 'hiStop' else '-'}inf (no stop)")
                 if handle.type == "prismatic":
                     if math.isfinite(value):
                         finite(value, key, MAX_LENGTH)
@@ -452,6 +454,8 @@ class WorldControl:
                 raise WorldError(f"{key} must be in [0, 1], got {values[key]}")
             if key in ("damping", "cfm", "stop_cfm", "fmax") and values[key] < 0:
                 raise WorldError(f"{key} must be >= 0, got {values[key]}")
+            if key in ("cfm", "stop_cfm") and values[key] > sanity.MAX_CFM:
+                raise WorldError(f"{key} must be at most {sanity.MAX_CFM:g}, got {values[key]}")
         driven = [robot for robot in self.robots.values() if handle in (robot.left, robot.right)]
         overridden = sorted({"vel", "fmax"} & set(values))
         if driven and overridden:
