@@ -80,7 +80,7 @@ def test_p3d_needs_a_body_and_unknown_plugins_are_named():
     with pytest.raises(ModelError, match="bodyName"):
         read_plugins("m", [GazeboPlugin(P3D, "truth", {})], {}, [])
     plugins = read_plugins("m", [GazeboPlugin("libgazebo_ros_camera.so", "cam", {})], {}, [])
-    assert plugins.warnings == ["plugin libgazebo_ros_camera.so (cam) is not supported: ignored"]
+    assert plugins.warnings == ["1 plugin(s) not supported, ignored: libgazebo_ros_camera.so"]
 
 
 def test_find_body_accepts_scoped_names():
