@@ -201,6 +201,15 @@ class BadInputNode(unittest.TestCase):
         times = [msg.clock.to_sec() for msg in clocks.matching(lambda msg: True)]
         self.assertEqual(times, sorted(times), "/clock went back")
 
+    def test_c02_a_topic_no_node_uses_any_more_is_free(self):
+        result = self.spawn("odometry_first", box_with(P3D.format(topic="/reused_topic")))
+        self.assertTrue(result.success, result.status_message)
+        self.assertTrue(self.delete_model("odometry_first").success)
+        laser = LASER.format(link="box_link", name="l", rate=5, samples=10, topic="/reused_topic")
+        result = self.spawn("laser_after", box_with(laser))
+        self.assertTrue(result.success, result.status_message)
+        self.assertTrue(self.delete_model("laser_after").success)
+
     # --- 4: names -------------------------------------------------------------------------------------------------
     def test_d01_non_ascii_model_name(self):
         self.refused(self.spawn("tb_\u00e9", model_text("box.urdf")), "not a legal ROS name", "ASCII")

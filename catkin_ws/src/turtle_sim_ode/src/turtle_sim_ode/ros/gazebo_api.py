@@ -451,9 +451,13 @@ def summarise(warnings: List[str]) -> List[str]:
 
 
 def known_topic_types() -> Dict[str, str]:
-    """Every topic the master knows (published or subscribed) with its type; empty if the master does not answer."""
+    """Every topic some node publishes or subscribes to now, with its type (the master keeps the types of topics
+    no node uses any more: those are left out); empty if the master does not answer."""
     try:
-        return dict(rosgraph.Master(rospy.get_name()).getTopicTypes())
+        master = rosgraph.Master(rospy.get_name())
+        publishers, subscribers, _ = master.getSystemState()
+        in_use = {topic for topic, nodes in list(publishers) + list(subscribers) if nodes}
+        return {topic: kind for topic, kind in master.getTopicTypes() if topic in in_use}
     except Exception as error:  # noqa: BLE001 - a spawn must not fail for a lookup: its own topics are still checked
         rospy.logwarn_throttle(10.0, "cannot ask the master for topic types: %s" % error)
         return {}

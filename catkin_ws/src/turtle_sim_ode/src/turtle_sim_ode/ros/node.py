@@ -230,6 +230,8 @@ class SimulatorNode:
                 self._wake.wait(min(wait, MAX_PACING_WAIT_S))
                 continue
             with self.lock:
+                if self._lockstep.locked():  # a step_simulation call began meanwhile: its steps alone
+                    continue
                 if self.sim.sim_time < self._now:  # reset_simulation: pace from the new time
                     self._restart_time()
                     pacing.restart(time.monotonic(), self._now, rtf)

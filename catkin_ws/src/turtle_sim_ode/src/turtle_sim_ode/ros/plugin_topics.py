@@ -523,12 +523,16 @@ def _kobuki_events(
     if not model.geoms.get(link):
         rospy.logwarn("model %s: no collision geoms on [%s]: no bumper or cliff events", model.name, link)
         return []
-    return [
-        BumperEventPublisher(BumperSensor(sim.physics, model, link), prefix + "bumper", settings.publish_rate),
-        CliffEventPublisher(
-            CliffSensor(sim.physics, model, link, robot.config.cliff_threshold), prefix + "cliff", settings.publish_rate
-        ),
-    ]
+    bumper = BumperSensor(sim.physics, model, link)
+    events: List[Periodic] = []
+    try:
+        events.append(BumperEventPublisher(bumper, prefix + "bumper", settings.publish_rate))
+        cliff = CliffSensor(sim.physics, model, link, robot.config.cliff_threshold)
+        events.append(CliffEventPublisher(cliff, prefix + "cliff", settings.publish_rate))
+    except BaseException:
+        bumper.close()  # its contact watch: the publisher that would close it was refused
+        raise
+    return events
 
 
 def model_interfaces(
