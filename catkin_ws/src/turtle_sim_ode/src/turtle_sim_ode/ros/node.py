@@ -23,7 +23,7 @@ from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepS
 
 from turtle_sim_ode.models.sdf import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.ros.gazebo_api import GazeboApi
+from turtle_sim_ode.ros.gazebo_api import GazeboApi, summarise
 from turtle_sim_ode.ros.plugin_topics import Periodic, TopicCheck, model_interfaces, sim_stamp
 from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
@@ -111,8 +111,8 @@ class SimulatorNode:
         with self.lock:
             warnings = self.sim.spawn_urdf(name, urdf, pose)
             self.add_interface(name, "")
-        for warning in warnings:
-            rospy.logwarn("spawn %s: %s", name, warning)
+        if warnings:
+            rospy.logwarn("spawn %s: %s", name, "; ".join(summarise(warnings)))
         rospy.loginfo("spawned model [%s] at x %.3f y %.3f z %.3f yaw %.3f", name, pose[0], pose[1], pose[2], pose[5])
         return warnings
 
@@ -303,8 +303,8 @@ def load_world(node: SimulatorNode, world_name: str) -> None:
         node.sim.max_update_rate = node.settings.real_time_factor / node.sim.physics.time_step
         for model in world.models:
             node.add_interface(model.name, "")
-    for warning in warnings:
-        rospy.logwarn("world %s: %s", path, warning)
+    if warnings:  # one line, at most MAX_SHOWN_WARNINGS of them
+        rospy.logwarn("world %s: %s", path, "; ".join(summarise(warnings)))
     rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, [m.name for m in world.models])
 
 
