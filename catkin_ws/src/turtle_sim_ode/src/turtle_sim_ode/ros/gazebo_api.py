@@ -194,13 +194,7 @@ class GazeboApi:
         check_topic = TopicTypes(name, known_topic_types())
         with self._lock:
             warnings = self._sim.spawn_model(name, robot, initial_pose, request.reference_frame)
-            try:
-                rays = sum(laser.samples for laser in self._sim.plugins[name].lasers)
-                if rays > MAX_RAYS_PER_MODEL:
-                    raise WorldError(
-                        "model '%s' asks for %d rays per scan (laser samples): at most %d per model"
-                        % (name, rays, MAX_RAYS_PER_MODEL)
-                    )
+            try:  # the model's ROS side, refused over the ray limit or for a topic (see SimulatorNode.add_interface)
                 self._on_spawn(name, request.robot_namespace, check_topic)
             except Exception as error:  # the ROS side could not be made: nothing of the model stays
                 self._on_delete(name)

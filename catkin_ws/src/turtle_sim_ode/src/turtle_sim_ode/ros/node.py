@@ -23,7 +23,7 @@ from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepS
 
 from turtle_sim_ode.models.sdf import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.ros.gazebo_api import GazeboApi, summarise
+from turtle_sim_ode.ros.gazebo_api import MAX_RAYS_PER_MODEL, GazeboApi, TopicTypes, known_topic_types, summarise
 from turtle_sim_ode.ros.plugin_topics import Periodic, TopicCheck, model_interfaces, sim_stamp
 from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
@@ -90,7 +90,17 @@ class SimulatorNode:
     # --- models -------------------------------------------------------------------------------------------
     def add_interface(self, name: str, robot_namespace: str, check_topic: Optional[TopicCheck] = None) -> None:
         """The ROS side of a freshly spawned model's plugins (called under the lock); all or nothing: on an error
-        none of its topics stays advertised. ``check_topic`` sees each topic before it is advertised."""
+        none of its topics stays advertised. ``check_topic`` sees each topic before it is advertised (default: the
+        topics in use, see TopicTypes); WorldError for a model over the ray limit. The caller removes the model on an
+        error (the spawn service does; at start-up the node exits)."""
+        rays = sum(laser.samples for laser in self.sim.plugins[name].lasers) if name in self.sim.plugins else 0
+        if rays > MAX_RAYS_PER_MODEL:
+            raise WorldError(
+                "model '%s' asks for %d rays per scan (laser samples): at most %d per model"
+                % (name, rays, MAX_RAYS_PER_MODEL)
+            )
+        if check_topic is None:
+            check_topic = TopicTypes(name, known_topic_types())
         interfaces = model_interfaces(name, self.sim, self.settings, self._tf, robot_namespace, check_topic)
         self.interfaces[name] = interfaces
         for interface in interfaces:
