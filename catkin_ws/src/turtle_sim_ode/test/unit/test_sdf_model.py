@@ -458,7 +458,7 @@ def joint(parent, child, joint_type="revolute", extra="", name="j"):
             "must be > 0",
         ),
         ('<model name="m"><static>maybe</static><link name="a"/></model>', "expected true or false"),
-        ('<world name="w"/>', "parse_sdf_world"),
+        ('<world name="w"/>', "world_name launch argument"),
     ],
 )
 def test_model_errors(body, message):

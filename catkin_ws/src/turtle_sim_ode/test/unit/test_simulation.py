@@ -19,7 +19,7 @@ def test_spawn_and_delete():
     assert sim.spawn_urdf("mobile_base", TURTLEBOT_URDF) == []
     assert "mobile_base" in sim.robots
     warnings = sim.spawn_urdf("box", BOX_URDF, (2, 0, 0.1, 0, 0, 0))
-    assert warnings == ["plugin libgazebo_ros_camera.so (cam) is not supported: ignored"]
+    assert warnings == ["1 plugin(s) not supported, ignored: libgazebo_ros_camera.so"]
     assert "box" not in sim.robots
     sim.delete("box")
     assert set(sim.models) == {"mobile_base"}

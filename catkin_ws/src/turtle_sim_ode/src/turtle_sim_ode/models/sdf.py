@@ -517,7 +517,10 @@ def parse_sdf_model(text: str) -> RobotModel:
         raise ModelError(f"SDF root element must be <sdf> or <model>, got <{root.tag}>")
     version = _version(root)
     if root.find("world") is not None:
-        raise ModelError("this SDF holds a <world>; use parse_sdf_world")
+        raise ModelError(
+            "this SDF holds a <world>, not a model: a world is loaded at start-up with the world_name launch argument "
+            "(the simulator's ~world_name parameter); to spawn one of its models, send that <model> alone"
+        )
     models = root.findall("model")
     if len(models) != 1:
         raise ModelError(f"expected one <model> in <sdf>, found {len(models)}")

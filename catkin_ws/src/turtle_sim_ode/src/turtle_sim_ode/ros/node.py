@@ -5,6 +5,8 @@ waits on ROS time itself.
 """
 from __future__ import annotations
 
+import ctypes
+import gc
 import math
 import os
 import signal
@@ -21,8 +23,9 @@ from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepS
 
 from turtle_sim_ode.models.sdf import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.ros.gazebo_api import GazeboApi
-from turtle_sim_ode.ros.plugin_topics import Periodic, model_interfaces, sim_stamp
+from turtle_sim_ode.ros.gazebo_api import MAX_RAYS_PER_MODEL, GazeboApi, TopicTypes, known_topic_types, summarise
+from turtle_sim_ode.ros.plugin_topics import Periodic, TopicCheck, model_interfaces, sim_stamp
+from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
 from turtle_sim_ode.ros.wire import ClockPacker, PackedPublisher, release, stamp_parts
 from turtle_sim_ode.world.simulation import Simulation
@@ -44,6 +47,10 @@ class SimulatorNode:
         # Service calls and topic callbacks run in rospy's threads; the world changes only under this lock.
         self.lock = threading.Lock()
         self._unpaused = threading.Event()
+        # Set by what changes the pacing (rate, pause, reset, a lockstep call ending, shutdown): the loop re-anchors.
+        self._wake = threading.Event()
+        # Held by a /gazebo/step_simulation call while it steps: the loop does not step in between, even if unpaused.
+        self._lockstep = threading.Lock()
         # Set by SIGINT/SIGTERM (see main): the loop ends between steps.
         self.stop_requested = threading.Event()
         if not settings.paused:
@@ -75,14 +82,28 @@ class SimulatorNode:
             self._set_paused,
             lambda: self.paused,
             self.settings.model_states_rate,
+            self.settings.pub_clock_frequency,
+            self._on_time_change,
         )
         self._step_service = rospy.Service("~step_simulation", StepSimulation, self._on_step_simulation)
 
     # --- models -------------------------------------------------------------------------------------------
-    def add_interface(self, name: str, robot_namespace: str) -> None:
-        """The ROS side of a freshly spawned model's plugins (called under the lock)."""
-        self.interfaces[name] = model_interfaces(name, self.sim, self.settings, self._tf, robot_namespace)
-        for interface in self.interfaces[name]:
+    def add_interface(self, name: str, robot_namespace: str, check_topic: Optional[TopicCheck] = None) -> None:
+        """The ROS side of a freshly spawned model's plugins (called under the lock); all or nothing: on an error
+        none of its topics stays advertised. ``check_topic`` sees each topic before it is advertised (default: the
+        topics in use, see TopicTypes); WorldError for a model over the ray limit. The caller removes the model on an
+        error (the spawn service does; at start-up the node exits)."""
+        rays = sum(laser.samples for laser in self.sim.plugins[name].lasers) if name in self.sim.plugins else 0
+        if rays > MAX_RAYS_PER_MODEL:
+            raise WorldError(
+                "model '%s' asks for %d rays per scan (laser samples): at most %d per model"
+                % (name, rays, MAX_RAYS_PER_MODEL)
+            )
+        if check_topic is None:
+            check_topic = TopicTypes(name, known_topic_types())
+        interfaces = model_interfaces(name, self.sim, self.settings, self._tf, robot_namespace, check_topic)
+        self.interfaces[name] = interfaces
+        for interface in interfaces:
             interface.restart(self.sim.sim_time)
         self._schedule()
 
@@ -90,6 +111,7 @@ class SimulatorNode:
         for interface in self.interfaces.pop(name, []):
             interface.close()
         self._schedule()
+        release_memory()
 
     def _schedule(self) -> None:
         self._next_due = min((interface.next_due for interface in self._all_interfaces()), default=math.inf)
@@ -99,8 +121,8 @@ class SimulatorNode:
         with self.lock:
             warnings = self.sim.spawn_urdf(name, urdf, pose)
             self.add_interface(name, "")
-        for warning in warnings:
-            rospy.logwarn("spawn %s: %s", name, warning)
+        if warnings:
+            rospy.logwarn("spawn %s: %s", name, "; ".join(summarise(warnings)))
         rospy.loginfo("spawned model [%s] at x %.3f y %.3f z %.3f yaw %.3f", name, pose[0], pose[1], pose[2], pose[5])
         return warnings
 
@@ -109,6 +131,20 @@ class SimulatorNode:
             self._unpaused.clear()
         else:
             self._unpaused.set()
+        self._wake.set()
+
+    def _on_time_change(self, what: str) -> None:
+        """After /gazebo/set_physics_properties or a reset (called under the lock): the loop re-anchors its pacing;
+        after reset_simulation every topic restarts and /clock tells the new time at once, even while paused."""
+        if what == "reset_simulation":
+            self._restart_time()
+            self._publish_clock(self._now)
+        self._wake.set()
+
+    def stop(self) -> None:
+        """Ask the loop to end (from a signal handler)."""
+        self.stop_requested.set()
+        self._wake.set()
 
     @property
     def paused(self) -> bool:
@@ -119,10 +155,7 @@ class SimulatorNode:
         """One physics step, then /clock and every topic that fell due (call under the lock)."""
         sim = self.sim
         if sim.sim_time < self._now:  # /gazebo/reset_simulation: time starts again
-            self._next_clock = sim.sim_time
-            for interface in self._all_interfaces():
-                interface.restart(sim.sim_time)
-            self._schedule()
+            self._restart_time()
         sim.step()
         now = self._now = sim.sim_time
         if now >= self._next_due - 1e-9:  # as Periodic.publish_due decides
@@ -136,6 +169,14 @@ class SimulatorNode:
         if now >= self._next_clock - 1e-9:
             self._next_clock = max(self._next_clock + 1.0 / self.settings.pub_clock_frequency, now)
             self._publish_clock(now)
+
+    def _restart_time(self) -> None:
+        """Sim time went back (reset_simulation): every schedule starts again from it (call under the lock)."""
+        now = self._now = self.sim.sim_time
+        self._next_clock = now
+        for interface in self._all_interfaces():
+            interface.restart(now)
+        self._schedule()
 
     def _publish_clock(self, now: float) -> None:
         secs, nsecs = stamp_parts(now)
@@ -161,10 +202,17 @@ class SimulatorNode:
         elif request.steps > MAX_LOCKSTEP_STEPS:
             message = "steps [%d] is more than one call may take (%d): split it" % (request.steps, MAX_LOCKSTEP_STEPS)
         else:
-            for _ in range(request.steps):
-                with self.lock:  # taken per step so that services and topics are served in between
-                    self._advance()
-            return StepSimulationResponse(sim_stamp(self._now), True, "stepped %d" % request.steps)
+            # One call at a time, and the run loop waits for it even if unpaused meanwhile: the answer is the sim
+            # time after exactly these steps.
+            with self._lockstep:
+                for _ in range(request.steps):
+                    with self.lock:  # taken per step so that services and topics are served in between
+                        self._advance()
+                        now = self._now
+                self._wake.set()
+            if request.steps == 0:
+                now = self.sim.sim_time
+            return StepSimulationResponse(sim_stamp(now), True, "stepped %d" % request.steps)
         rospy.logwarn("step_simulation: %s", message)
         return StepSimulationResponse(sim_stamp(self.sim.sim_time), False, message)
 
@@ -175,27 +223,31 @@ class SimulatorNode:
         with self.lock:
             self._publish_clock(self._now)
             self._next_clock = self._now + 1.0 / self.settings.pub_clock_frequency
-        anchor_wall, anchor_sim = time.monotonic(), self._now
+        pacing = Pacing(time.monotonic(), self._now, self.sim.real_time_factor)
         while not rospy.is_shutdown() and not self.stop_requested.is_set():
-            if not self._unpaused.is_set():
-                self._unpaused.wait(0.1)
-                anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
+            if self._wake.is_set():
+                self._wake.clear()
+                pacing.restart(time.monotonic(), self.sim.sim_time, self.sim.real_time_factor)
+            if not self._unpaused.is_set() or self._lockstep.locked():
+                self._wake.wait(MAX_PACING_WAIT_S)
+                self._wake.set()  # re-anchor once running again
+                continue
+            rtf = self.sim.real_time_factor
+            if rtf != pacing.rtf:
+                pacing.restart(time.monotonic(), self.sim.sim_time, rtf)
+            wait = pacing.wait(time.monotonic(), self._now)
+            if wait > 0:
+                self._wake.wait(min(wait, MAX_PACING_WAIT_S))
                 continue
             with self.lock:
-                rtf = self.sim.real_time_factor
-                if self.sim.sim_time < self._now:
-                    anchor_wall, anchor_sim = time.monotonic(), self.sim.sim_time
-                elif rtf == 0:  # paced, each step keeps its own wall time: sim time never runs ahead
+                if self._lockstep.locked():  # a step_simulation call began meanwhile: its steps alone
+                    continue
+                if self.sim.sim_time < self._now:  # reset_simulation: pace from the new time
+                    self._restart_time()
+                    pacing.restart(time.monotonic(), self._now, rtf)
+                elif rtf == 0:  # unpaced, each step keeps its own wall time: sim time never runs ahead
                     self._step_quietly()
                 self._advance()
-                now = self._now
-            if rtf > 0:
-                delay = anchor_wall + (now - anchor_sim) / rtf - time.monotonic()
-                if delay > 0:
-                    time.sleep(delay)
-                elif delay < -0.5:
-                    # Cannot keep up: run as fast as possible without trying to catch up later.
-                    anchor_wall, anchor_sim = time.monotonic(), now
 
     def _all_interfaces(self) -> List[Periodic]:
         return [interface for interfaces in self.interfaces.values() for interface in interfaces]
@@ -205,6 +257,16 @@ class SimulatorNode:
             self._step_service.shutdown()
         for interface in self._all_interfaces():
             interface.close()
+
+
+def release_memory() -> None:
+    """Hand freed heap back to the system after a model is deleted: glibc keeps the memory of a large model's many
+    small objects (ODE ray geoms) otherwise, ~300 MB for 800,000 rays."""
+    gc.collect()
+    try:
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):  # not glibc
+        pass
 
 
 def stop_hearing_own_clock() -> bool:
@@ -241,14 +303,18 @@ def load_world(node: SimulatorNode, world_name: str) -> None:
     path = resolve_world(world_name)
     with open(path) as world_file:
         world = parse_sdf_world(world_file.read())
+    time_step = world.physics.apply(node.sim.physics.params).time_step
+    problem = pacing_problem(time_step, node.settings.real_time_factor / time_step, node.settings.pub_clock_frequency)
+    if problem:
+        raise ModelError("real_time_factor [%g] with the world's %s" % (node.settings.real_time_factor, problem))
     with node.lock:
         warnings = node.sim.load_world(world)
         # The node's real_time_factor parameter (the launch argument) wins over the world's pacing.
         node.sim.max_update_rate = node.settings.real_time_factor / node.sim.physics.time_step
         for model in world.models:
             node.add_interface(model.name, "")
-    for warning in warnings:
-        rospy.logwarn("world %s: %s", path, warning)
+    if warnings:  # one line, at most MAX_SHOWN_WARNINGS of them
+        rospy.logwarn("world %s: %s", path, "; ".join(summarise(warnings)))
     rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, [m.name for m in world.models])
 
 
@@ -284,7 +350,7 @@ def main() -> int:
             return 1
     node.advertise()
     for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda *_: node.stop_requested.set())
+        signal.signal(signum, lambda *_: node.stop())
     try:
         node.run()
     except rospy.ROSInterruptException:

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 import random
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import ode
 import rospy
@@ -80,6 +80,44 @@ ODOM_POSE_COVARIANCE = [
 ]
 ODOM_TWIST_COVARIANCE = ODOM_POSE_COVARIANCE
 Vec3 = Tuple[float, float, float]
+# Called with each topic name and message class before a model's plugin advertises or subscribes to it; raises
+# (WorldError) to refuse the model.
+TopicCheck = Callable[[str, type], None]
+
+
+class _Advertising:
+    """The topics one model_interfaces call opens: each checked first, all released if the call fails."""
+
+    check: Optional[TopicCheck] = None
+    opened: List[Any] = []
+
+
+def _opened(handle: Any) -> Any:
+    _Advertising.opened.append(handle)
+    return handle
+
+
+def _packed(topic: str, msg_type: type) -> PackedPublisher:
+    if _Advertising.check is not None:
+        _Advertising.check(topic, msg_type)
+    return _opened(PackedPublisher(topic, msg_type))
+
+
+def _publisher(topic: str, msg_type: type, queue_size: int) -> rospy.Publisher:
+    if _Advertising.check is not None:
+        _Advertising.check(topic, msg_type)
+    return _opened(rospy.Publisher(topic, msg_type, queue_size=queue_size))
+
+
+def _subscriber(topic: str, msg_type: type, callback: Callable[[Any], None], queue_size: int) -> rospy.Subscriber:
+    if _Advertising.check is not None:
+        _Advertising.check(topic, msg_type)
+    return _opened(rospy.Subscriber(topic, msg_type, callback, queue_size=queue_size))
+
+
+def period(rate: float) -> float:
+    """Seconds of sim time between messages at ``rate`` Hz; rate 0 means every step, as in Gazebo."""
+    return 1.0 / rate if rate > 0 else 0.0
 
 
 def sim_stamp(seconds: float) -> rospy.Time:
@@ -147,7 +185,9 @@ class DriveInterface(Periodic):
         namespace: str,
     ) -> None:
         config = robot.config
-        super().__init__(1.0 / (config.update_rate or settings.publish_rate))
+        # The Kobuki plugin publishes at the node's publish_rate; gazebo_ros_diff_drive's updateRate 0 is every step.
+        kobuki = config.filename.endswith("kobuki.so")
+        super().__init__(period(settings.publish_rate if kobuki else config.update_rate))
         self.name = name
         self.robot = robot
         self._sim = sim
@@ -157,17 +197,17 @@ class DriveInterface(Periodic):
         self._world_odometry = config.odometry_source == "world"
         self._reset_requested = False
         prefix = topic_prefix(namespace or config.robot_namespace)
-        self._handles: List = [rospy.Subscriber(prefix + config.command_topic, Twist, self._on_velocity, queue_size=1)]
+        self._handles: List = [_subscriber(prefix + config.command_topic, Twist, self._on_velocity, 1)]
         if config.reset_topic:
-            self._handles.append(rospy.Subscriber(prefix + config.reset_topic, EmptyMsg, self._on_reset, queue_size=1))
-        self._odom_pub = PackedPublisher(prefix + config.odometry_topic, Odometry)
+            self._handles.append(_subscriber(prefix + config.reset_topic, EmptyMsg, self._on_reset, 1))
+        self._odom_pub = _packed(prefix + config.odometry_topic, Odometry)
         # gazebo_ros_diff_drive's world odometry comes without covariances.
         covariances = () if self._world_odometry else (ODOM_POSE_COVARIANCE, ODOM_TWIST_COVARIANCE)
         self._odom_packer = OdometryPacker(self._odom_frame, self._base_frame, *covariances)
         self._tf_packer = TransformPacker(self._odom_frame, self._base_frame)
         self._joint_pub: Optional[PackedPublisher] = None
         if config.publish_joint_states:
-            self._joint_pub = PackedPublisher(prefix + "joint_states", JointState)
+            self._joint_pub = _packed(prefix + "joint_states", JointState)
         self._handles += [p for p in (self._odom_pub, self._joint_pub) if p is not None]
         self._joint_packer = JointStatePacker([robot.left.name, robot.right.name])
 
@@ -247,7 +287,7 @@ class GroundTruthPublisher(Periodic):
         xyz_offset: Vec3 = (0.0, 0.0, 0.0),
         rpy_offset: Vec3 = (0.0, 0.0, 0.0),
     ) -> None:
-        super().__init__(1.0 / rate)
+        super().__init__(period(rate))
         self._model = model
         self._link = link
         self._twist_in_body = twist_in_body
@@ -255,7 +295,7 @@ class GroundTruthPublisher(Periodic):
         self._offset = xyz_offset
         w, x, y, z = quat_from_rpy(*rpy_offset)
         self._rotation_offset = (w, x, y, z)
-        self._pub = PackedPublisher(topic, Odometry)
+        self._pub = _packed(topic, Odometry)
         self._packer = OdometryPacker(frame, link)
 
     @classmethod
@@ -267,7 +307,7 @@ class GroundTruthPublisher(Periodic):
             link,
             topic_prefix(namespace or config.robot_namespace) + config.topic,
             config.frame,
-            config.update_rate or default_rate,
+            config.update_rate,  # 0: every step, as gazebo_ros_p3d
             False,
             config.gaussian_noise,
             config.xyz_offset,
@@ -300,10 +340,10 @@ class JointStatePublisher(Periodic):
     """libgazebo_ros_joint_state_publisher.so: positions and velocities of the named joints."""
 
     def __init__(self, model: BuiltModel, config: JointStatesConfig, namespace: str) -> None:
-        super().__init__(1.0 / config.update_rate if config.update_rate else 0.0)
+        super().__init__(period(config.update_rate))
         self._handles = [model.joint(name) for name in config.joints]
         self._packer = JointStatePacker(list(config.joints))
-        self._pub = PackedPublisher(topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState)
+        self._pub = _packed(topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         if not self._pub.get_num_connections():
@@ -320,18 +360,18 @@ class JointStatePublisher(Periodic):
 class LaserPublisher(Periodic):
     """sensor_msgs/LaserScan of a ray sensor; rays are cast only when due and someone listens."""
 
-    def __init__(self, scanner: LaserScanner, namespace: str) -> None:
+    def __init__(self, scanner: LaserScanner, namespace: str, time_step: float) -> None:
         config = scanner.config
-        super().__init__(1.0 / config.update_rate)
+        super().__init__(period(config.update_rate))  # 0: every step, as Gazebo's sensors
         self._scanner = scanner
-        self._pub = PackedPublisher(plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan)
+        self._pub = _packed(plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan)
         self._packer = LaserScanPacker(
             scanner.frame,
             angle_min=config.min_angle,
             angle_max=config.max_angle,
             angle_increment=config.angle_increment,
             time_increment=0.0,
-            scan_time=1.0 / config.update_rate,
+            scan_time=period(config.update_rate) or time_step,
             range_min=config.range_min,
             range_max=config.range_max,
             beams=config.samples,
@@ -350,9 +390,9 @@ class ImuPublisher(Periodic):
     """sensor_msgs/Imu of a link: the Kobuki's gyro, or an IMU plugin's (libgazebo_ros_imu*.so)."""
 
     def __init__(self, sensor: ImuSensor, topic: str, frame: str, rate: float) -> None:
-        super().__init__(1.0 / rate if rate > 0 else 0.0)  # rate 0: every step, as gazebo_plugins has it
+        super().__init__(period(rate))  # rate 0: every step, as gazebo_plugins has it
         self._sensor = sensor
-        self._pub = PackedPublisher(topic, Imu)
+        self._pub = _packed(topic, Imu)
         self._packer = ImuPacker(frame)
 
     def restart(self, now: float) -> None:
@@ -381,9 +421,9 @@ class BumperEventPublisher(Periodic):
     """The Kobuki plugin's bumper events: one turtle_sim_ode_msgs/BumperEvent (= kobuki_msgs) per change."""
 
     def __init__(self, sensor: BumperSensor, topic: str, rate: float) -> None:
-        super().__init__(1.0 / rate)
+        super().__init__(period(rate))
         self._sensor = sensor
-        self._pub = rospy.Publisher(topic, BumperEvent, queue_size=10)
+        self._pub = _publisher(topic, BumperEvent, 10)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         for bumper, state in self._sensor.changes():  # every time, even unheard: events are changes
@@ -399,9 +439,9 @@ class CliffEventPublisher(Periodic):
     the floor in cm (``bottom``; the ray's range when it sees nothing)."""
 
     def __init__(self, sensor: CliffSensor, topic: str, rate: float) -> None:
-        super().__init__(1.0 / rate)
+        super().__init__(period(rate))
         self._sensor = sensor
-        self._pub = rospy.Publisher(topic, CliffEvent, queue_size=10)
+        self._pub = _publisher(topic, CliffEvent, 10)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         for sensor, state, distance in self._sensor.changes():
@@ -420,15 +460,13 @@ class ContactsPublisher(Periodic):
     GROUND = "ground_plane::link::collision"
 
     def __init__(self, sim: Simulation, model: BuiltModel, config: ContactConfig, namespace: str) -> None:
-        super().__init__(1.0 / config.update_rate if config.update_rate > 0 else 0.0)
+        super().__init__(period(config.update_rate))
+        self._pub = _publisher(plugin_topic(namespace or config.robot_namespace, config.topic), ContactsState, 1)
         self._sim = sim
         self._physics: PhysicsWorld = sim.physics
         self._watch = self._physics.watch_contacts(model.geoms.get(config.link, []))
         self._frame = config.frame
         self._names: Dict[ode.GeomObject, str] = {}
-        self._pub = rospy.Publisher(
-            plugin_topic(namespace or config.robot_namespace, config.topic), ContactsState, queue_size=1
-        )
 
     def _name(self, geom: ode.GeomObject) -> str:
         if geom is self._physics.ground:
@@ -485,12 +523,16 @@ def _kobuki_events(
     if not model.geoms.get(link):
         rospy.logwarn("model %s: no collision geoms on [%s]: no bumper or cliff events", model.name, link)
         return []
-    return [
-        BumperEventPublisher(BumperSensor(sim.physics, model, link), prefix + "bumper", settings.publish_rate),
-        CliffEventPublisher(
-            CliffSensor(sim.physics, model, link, robot.config.cliff_threshold), prefix + "cliff", settings.publish_rate
-        ),
-    ]
+    bumper = BumperSensor(sim.physics, model, link)
+    events: List[Periodic] = []
+    try:
+        events.append(BumperEventPublisher(bumper, prefix + "bumper", settings.publish_rate))
+        cliff = CliffSensor(sim.physics, model, link, robot.config.cliff_threshold)
+        events.append(CliffEventPublisher(cliff, prefix + "cliff", settings.publish_rate))
+    except BaseException:
+        bumper.close()  # its contact watch: the publisher that would close it was refused
+        raise
+    return events
 
 
 def model_interfaces(
@@ -499,10 +541,34 @@ def model_interfaces(
     settings: SimulatorSettings,
     tf_broadcaster: PackedPublisher,
     namespace: str,
+    check_topic: Optional[TopicCheck] = None,
 ) -> List[Periodic]:
-    """Every ROS publisher and subscriber the plugins of model `name` ask for (call under the world lock)."""
-    model = sim.models[name]
+    """Every ROS publisher and subscriber the plugins of model `name` ask for (call under the world lock), each
+    topic first shown to ``check_topic``. All or nothing: if one fails, those opened so far are closed again."""
     interfaces: List[Periodic] = []
+    _Advertising.check, _Advertising.opened = check_topic, []
+    try:
+        _add_interfaces(name, sim, settings, tf_broadcaster, namespace, interfaces)
+    except BaseException:
+        for interface in interfaces:
+            interface.close()
+        for handle in _Advertising.opened:  # those of an interface that failed half-way
+            release(handle)
+        raise
+    finally:
+        _Advertising.check, _Advertising.opened = None, []
+    return interfaces
+
+
+def _add_interfaces(
+    name: str,
+    sim: Simulation,
+    settings: SimulatorSettings,
+    tf_broadcaster: PackedPublisher,
+    namespace: str,
+    interfaces: List[Periodic],
+) -> None:
+    model = sim.models[name]
     robot = sim.robots.get(name)
     if robot is not None:
         interfaces.append(DriveInterface(name, robot, settings, tf_broadcaster, sim, namespace))
@@ -537,11 +603,11 @@ def model_interfaces(
         for config in plugins.joint_states:
             interfaces.append(JointStatePublisher(model, config, namespace))
         for config in plugins.lasers:
-            interfaces.append(LaserPublisher(LaserScanner(sim.physics, model, config.link, config), namespace))
+            scanner = LaserScanner(sim.physics, model, config.link, config)
+            interfaces.append(LaserPublisher(scanner, namespace, sim.physics.time_step))
         for config in plugins.imus:
             publisher = _imu_publisher(model, config, tuple(sim.physics.params.gravity), namespace)
             if publisher is not None:
                 interfaces.append(publisher)
         for config in plugins.contacts:
             interfaces.append(ContactsPublisher(sim, model, config, namespace))
-    return interfaces

@@ -9,6 +9,7 @@ from rosgraph.names import is_legal_base_name
 
 from turtle_sim_ode.models.urdf import MAX_LENGTH
 from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsParams
+from turtle_sim_ode.ros.pacing import pacing_problem
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 
 # Parameters of physics.yaml, read into PhysicsParams (checked again by PhysicsParams.validate()).
@@ -175,6 +176,12 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
     for name in ("odom_frame", "base_frame", "ground_truth_topic", "ground_truth_frame"):
         if not getattr(settings, name):
             raise SettingsError(f"parameter ~{name} must not be empty")
+    time_step = settings.physics.time_step
+    problem = pacing_problem(time_step, settings.real_time_factor / time_step, settings.pub_clock_frequency)
+    if problem:
+        raise SettingsError(
+            f"parameters ~real_time_factor [{settings.real_time_factor!r}] and ~time_step [{time_step!r}]: {problem}"
+        )
     if settings.spawn_model_name and not is_legal_base_name(settings.spawn_model_name):
         raise SettingsError(
             f"parameter ~spawn_model_name must be a legal ROS name (a letter, then letters, digits or '_'), "

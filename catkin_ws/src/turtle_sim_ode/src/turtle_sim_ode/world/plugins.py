@@ -19,6 +19,9 @@ JOINT_STATE_PUBLISHER = "libgazebo_ros_joint_state_publisher.so"
 IMU = "libgazebo_ros_imu.so"
 DRIVES = (KOBUKI, DIFF_DRIVE)
 SUPPORTED = (KOBUKI, DIFF_DRIVE, P3D, JOINT_STATE_PUBLISHER, IMU)
+# The warning about unsupported plugins names at most this many file names (each cut to SHOWN_FILENAME_CHARS).
+SHOWN_FILENAMES = 10
+SHOWN_FILENAME_CHARS = 80
 
 
 @dataclass
@@ -202,8 +205,9 @@ def read_plugins(
     model_name: str, plugins: List[GazeboPlugin], overrides: Mapping[str, object], joint_names: List[str]
 ) -> ModelPlugins:
     """Configs of the supported plugins of one model; ModelError for a supported plugin with bad values or
-    joints the model does not have, a warning naming each unsupported plugin."""
+    joints the model does not have, one warning counting the unsupported plugins by file name."""
     found = ModelPlugins()
+    unsupported: Dict[str, int] = {}
     for plugin in plugins:
         if plugin.filename == KOBUKI:
             found.drives.append(kobuki_drive(model_name, plugin, overrides))
@@ -217,13 +221,27 @@ def read_plugins(
         elif plugin.filename == IMU:
             found.imus.append(imu_config(plugin.filename, plugin.params))
         else:
-            found.warnings.append(f"plugin {plugin.filename} ({plugin.name}) is not supported: ignored")
+            unsupported[plugin.filename] = unsupported.get(plugin.filename, 0) + 1
+    if unsupported:
+        found.warnings.append(unsupported_warning(unsupported))
     wanted = [j for d in found.drives for j in (d.left_joint, d.right_joint)]
     wanted += [j for c in found.joint_states for j in c.joints]
     missing = sorted(set(wanted) - set(joint_names))
     if missing:
         raise ModelError(f"model '{model_name}' has no movable joint(s) {missing} named by its plugins")
     return found
+
+
+def unsupported_warning(counts: Mapping[str, int]) -> str:
+    """One warning for every unsupported plugin: how many, of which file names (a bounded list)."""
+    names = [
+        (name if len(name) <= SHOWN_FILENAME_CHARS else f"{name[:SHOWN_FILENAME_CHARS]}... ({len(name)} characters)")
+        + (f" x{count}" if count > 1 else "")
+        for name, count in list(counts.items())[:SHOWN_FILENAMES]
+    ]
+    more = f" and {len(counts) - SHOWN_FILENAMES} other file names" if len(counts) > SHOWN_FILENAMES else ""
+    total = sum(counts.values())
+    return f"{total} plugin(s) not supported, ignored: {', '.join(names)}{more}"
 
 
 def find_body(link_names: List[str], body: str) -> Optional[str]:
