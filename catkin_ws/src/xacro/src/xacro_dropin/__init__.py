@@ -79,6 +79,9 @@ def main(argv: Optional[List[str]] = None) -> int:
         )
         return 1
     use_ros_package_path(substitution_args, ros_package_finder(rospkg.RosPack()))
+    # xacro 2.1.1 names xml.parsers.expat in an except clause without importing it: an input file that cannot be
+    # opened would end in an AttributeError instead of its error message and exit code 2.
+    import xml.parsers.expat  # noqa: F401
     sys.argv = ["xacro"] + list(argv)
     xacro.main()  # exits 2 with the error on stderr when processing fails
     return 0
