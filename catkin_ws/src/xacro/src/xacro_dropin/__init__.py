@@ -82,6 +82,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     # xacro 2.1.1 names xml.parsers.expat in an except clause without importing it: an input file that cannot be
     # opened would end in an AttributeError instead of its error message and exit code 2.
     import xml.parsers.expat  # noqa: F401
+
     sys.argv = ["xacro"] + list(argv)
     xacro.main()  # exits 2 with the error on stderr when processing fails
     return 0
