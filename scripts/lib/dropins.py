@@ -79,9 +79,9 @@ def apply(src_dir, prefixes, devel_dir=None, log=sys.stderr):
             if not os.path.exists(ignore):
                 with open(ignore, "w") as ignore_file:
                     ignore_file.write("%s: the system has %s\n" % (MARKER, os.path.dirname(manifest)))
-            for leftover in (os.path.join(devel_dir, "share", name), os.path.join(devel_dir, "lib", name)):
-                if devel_dir and os.path.isdir(leftover):
-                    shutil.rmtree(leftover)
+            for leftover in (("share", name), ("lib", name)) if devel_dir else ():
+                if os.path.isdir(os.path.join(devel_dir, *leftover)):
+                    shutil.rmtree(os.path.join(devel_dir, *leftover))
             log.write("dropins: %s: the system's %s is used (%s ignored)\n" % (name, os.path.dirname(manifest), folder))
             continue
         if os.path.exists(ignore) and open(ignore).read().startswith(MARKER):

@@ -22,7 +22,7 @@ def make_package(root: Path, name: str) -> Path:
     (folder / "urdf").mkdir(parents=True)
     (folder / "package.xml").write_text(
         '<package format="3"><name>%s</name><version>0.0.1</version><description>d</description>'
-        '<maintainer email="a@b.c">m</maintainer><license>BSD</license></package>' % name
+        '<maintainer email="dev@example.com">m</maintainer><license>BSD</license></package>' % name
     )
     return folder
 
