@@ -37,10 +37,8 @@ def find_dropins(src_dir):
         if "package.xml" not in files:
             continue
         dirs[:] = []  # as catkin: nothing below a package
-        tree = ET.parse(os.path.join(root, "package.xml"))
-        export = tree.find("export")
-        if export is not None and export.find("dropin") is not None:
-            dropins[tree.findtext("name").strip()] = root
+        if is_dropin(os.path.join(root, "package.xml")):
+            dropins[ET.parse(os.path.join(root, "package.xml")).findtext("name").strip()] = root
     return dropins
 
 
@@ -56,11 +54,19 @@ def system_prefixes(workspace):
     return kept
 
 
+def is_dropin(manifest):
+    export = ET.parse(manifest).find("export")
+    return export is not None and export.find("dropin") is not None
+
+
 def system_package(name, prefixes):
-    """The package.xml of a package `name` installed under one of the prefixes, or None."""
+    """The package.xml of a package `name` installed under one of the prefixes, or None.
+
+    An installed copy of a drop-in (an install space of this or another workspace) is not the system's package.
+    """
     for prefix in prefixes:
         manifest = os.path.join(prefix, "share", name, "package.xml")
-        if os.path.isfile(manifest):
+        if os.path.isfile(manifest) and not is_dropin(manifest):
             return manifest
     return None
 

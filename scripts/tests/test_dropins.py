@@ -84,6 +84,16 @@ def test_system_package_wins_for_catkin_rospack_and_rospkg(workspace):
     assert rospack.get_path("gazebo_ros") == str(src / "gazebo_ros")
 
 
+def test_an_installed_dropin_is_not_a_system_package(workspace):
+    """catkin_make install puts the drop-in's package.xml into share/: that copy must not ignore its source."""
+    installed = workspace / "system" / "share" / "xacro"
+    installed.mkdir()
+    shutil.copy(os.path.join(SRC, "xacro", "package.xml"), str(installed / "package.xml"))
+    result = apply(workspace)
+    assert str(workspace / "ws" / "src" / "xacro") in result.stdout.split()
+    assert not (workspace / "ws" / "src" / "xacro" / "CATKIN_IGNORE").exists()
+
+
 def test_ignored_dropin_leftovers_leave_the_devel_space(workspace):
     devel = workspace / "ws" / "devel"
     for leftover in ("share/xacro/cmake", "lib/xacro", "share/gazebo_ros/cmake"):
