@@ -12,6 +12,10 @@ import pytest
 import rospkg
 
 PACKAGE_ROOT = Path(__file__).resolve().parents[2]
+if (PACKAGE_ROOT / "CATKIN_IGNORE").exists():  # scripts/lib/dropins.py: the system's xacro is used here
+    pytest.skip(
+        "the drop-in is ignored: " + (PACKAGE_ROOT / "CATKIN_IGNORE").read_text().strip(), allow_module_level=True
+    )
 sys.path.insert(0, str(PACKAGE_ROOT / "src"))
 
 import xacro_dropin  # noqa: E402
