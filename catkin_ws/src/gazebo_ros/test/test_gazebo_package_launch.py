@@ -59,10 +59,20 @@ class GazeboPackageLaunch(unittest.TestCase):
         )
         cls.model = rospy.get_param("~model")
         cls.startup_timeout = float(rospy.get_param("~startup_timeout", 180.0))
+        cls.deadline = time.monotonic() + cls.startup_timeout
+        # rostest ends a test node that overruns its time-limit with a signal: the launch must not outlive it
+        rospy.on_shutdown(cls.stop_launch)
 
     @classmethod
     def tearDownClass(cls) -> None:
-        for sig, grace in ((signal.SIGINT, 20.0), (signal.SIGKILL, 5.0)):
+        cls.stop_launch()
+        cls.log.close()
+
+    @classmethod
+    def stop_launch(cls) -> None:
+        if cls.launch.poll() is not None:
+            return
+        for sig, grace in ((signal.SIGINT, 10.0), (signal.SIGKILL, 5.0)):
             try:
                 os.killpg(cls.launch.pid, sig)
                 cls.launch.wait(grace)
@@ -71,7 +81,6 @@ class GazeboPackageLaunch(unittest.TestCase):
                 break
             except subprocess.TimeoutExpired:
                 continue
-        cls.log.close()
 
     def launch_output(self) -> str:
         self.log.seek(0)
@@ -80,16 +89,15 @@ class GazeboPackageLaunch(unittest.TestCase):
     def wait_for_model(self) -> None:
         """Until the launch file's spawn_model has spawned the robot (model_states lists it)."""
         try:
-            rospy.wait_for_service("/gazebo/get_model_state", timeout=self.startup_timeout)
+            rospy.wait_for_service("/gazebo/get_model_state", timeout=max(1.0, self.deadline - time.monotonic()))
         except rospy.ROSException:
             self.fail("no /gazebo/get_model_state within %g s:\n%s" % (self.startup_timeout, self.launch_output()))
-        deadline = time.monotonic() + self.startup_timeout
         while not rospy.is_shutdown():
             self.assertIsNone(self.launch.poll(), "roslaunch ended:\n" + self.launch_output())
             states = rospy.wait_for_message("/gazebo/model_states", ModelStates, timeout=self.startup_timeout)
             if self.model in states.name:
                 return
-            self.assertLess(time.monotonic(), deadline, "model never spawned:\n" + self.launch_output())
+            self.assertLess(time.monotonic(), self.deadline, "model never spawned:\n" + self.launch_output())
 
     def model_pose(self):
         state = rospy.ServiceProxy("/gazebo/get_model_state", GetModelState)(self.model, "world")
