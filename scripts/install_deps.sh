@@ -40,15 +40,32 @@ done
 
 if [ "${#missing[@]}" -eq 0 ]; then
   echo "install_deps: all ${#wanted[@]} packages present ($platform)."
-  exit 0
-fi
-echo "install_deps: installing ${#missing[@]} of ${#wanted[@]} packages ($platform): ${missing[*]}"
-if [ "$platform" = ubuntu ] && ! apt-cache policy ros-noetic-catkin | grep -q 'Candidate: [0-9]'; then
-  apt_install ca-certificates
-  if ! apt-cache policy ros-noetic-catkin | grep -q 'Candidate: [0-9]'; then
-    echo "install_deps: ros-noetic-* packages not found: configure the ROS Noetic apt source first" >&2
-    echo "(see http://wiki.ros.org/noetic/Installation/Ubuntu, steps 1.2-1.3)." >&2
-    exit 1
+else
+  echo "install_deps: installing ${#missing[@]} of ${#wanted[@]} packages ($platform): ${missing[*]}"
+  if [ "$platform" = ubuntu ] && ! apt-cache policy ros-noetic-catkin | grep -q 'Candidate: [0-9]'; then
+    apt_install ca-certificates
+    if ! apt-cache policy ros-noetic-catkin | grep -q 'Candidate: [0-9]'; then
+      echo "install_deps: ros-noetic-* packages not found: configure the ROS Noetic apt source first" >&2
+      echo "(see http://wiki.ros.org/noetic/Installation/Ubuntu, steps 1.2-1.3)." >&2
+      exit 1
+    fi
   fi
+  apt_install "${missing[@]}"
 fi
-apt_install "${missing[@]}"
+
+# Drop-ins (README "Using packages written for Gazebo"): where the system has no xacro (Debian 12), the
+# workspace's xacro package is used, and it runs PyPI's xacro. That library goes, pinned and hash-checked, into a
+# folder of its own, not into the system Python (externally managed on Debian 12); its one dependency, PyYAML,
+# comes from apt. pip runs only when a pin is missing there. Offline: PIP_NO_INDEX=1 PIP_FIND_LINKS=<wheel folder>.
+PYPI_DIR=/usr/local/lib/ros_dropins/python
+/usr/bin/python3 scripts/lib/dropins.py apply > /dev/null
+pypi_missing=$(/usr/bin/python3 scripts/lib/dropins.py pypi-missing --target "$PYPI_DIR")
+if [ -n "$pypi_missing" ]; then
+  while read -r requirements; do
+    echo "install_deps: pip install --target $PYPI_DIR -r ${requirements#"$PWD"/}"
+    $SUDO env PIP_ROOT_USER_ACTION=ignore /usr/bin/python3 -m pip install -q --no-deps --require-hashes --upgrade \
+      --target "$PYPI_DIR" -r "$requirements"
+  done <<< "$pypi_missing"
+else
+  echo "install_deps: PyPI libraries of the drop-ins in use present ($PYPI_DIR)."
+fi

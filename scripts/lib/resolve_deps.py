@@ -2,8 +2,10 @@
 """Print the system packages the workspace needs on one platform.
 
 The dependency list is the packages' own package.xml files: every key they name (minus the workspace's own
-packages) is mapped to system packages through rosdeps.tsv, plus the "tool:" rows the scripts need. Only the
-standard library is used, so this runs before anything is installed.
+packages) is mapped to system packages through rosdeps.tsv, plus the "tool:" rows the scripts need. A workspace
+package that has a row of its own is a drop-in for a system package (scripts/lib/dropins.py): its key is resolved
+through that row, so that a platform that has the real package installs it. Only the standard library is used,
+so this runs before anything is installed.
 """
 import argparse
 import os
@@ -40,7 +42,7 @@ def workspace_keys(src_dir):
             own.add(tree.findtext("name").strip())
             for tag in DEPEND_TAGS:
                 keys.update(element.text.strip() for element in tree.iter(tag))
-    return own, keys - own
+    return own, keys
 
 
 def main():
@@ -50,7 +52,8 @@ def main():
     args = parser.parse_args()
 
     table = load_table(os.path.join(HERE, "rosdeps.tsv"))
-    _, keys = workspace_keys(args.src)
+    own, keys = workspace_keys(args.src)
+    keys -= {name for name in own if name not in table}
     unknown = sorted(k for k in keys if k not in table)
     if unknown:
         sys.exit(

@@ -1,0 +1,154 @@
+"""The drop-in mechanism (scripts/lib/dropins.py): a workspace xacro or gazebo_ros never shadows the system's.
+
+A system package is simulated by a prefix of our own with share/<name>/package.xml, as /opt/ros/noetic has them
+on Ubuntu; the drop-ins are copied into a workspace of their own, so that the real source tree is not touched.
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+import pytest
+import rospkg
+from catkin_pkg.packages import find_packages
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+SRC = os.path.join(REPO, "catkin_ws", "src")
+DROPINS = os.path.join(REPO, "scripts", "lib", "dropins.py")
+MANIFEST = (
+    '<package format="3"><name>%s</name><version>1.14.0</version><description>d</description>'
+    '<maintainer email="dev@example.com">m</maintainer><license>BSD</license>'
+    "<buildtool_depend>catkin</buildtool_depend></package>"
+)
+
+
+def run(*args):
+    return subprocess.run(
+        [sys.executable, DROPINS] + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True
+    )
+
+
+@pytest.fixture
+def workspace(tmp_path):
+    """tmp/ws/src with the two drop-ins and a package of the user's; tmp/system: an empty system prefix."""
+    src = tmp_path / "ws" / "src"
+    for name in ("xacro", "gazebo_ros"):
+        shutil.copytree(
+            os.path.join(SRC, name), str(src / name), ignore=shutil.ignore_patterns("test", "CATKIN_IGNORE")
+        )
+    (src / "user_pkg").mkdir()
+    (src / "user_pkg" / "package.xml").write_text(MANIFEST % "user_pkg")
+    (tmp_path / "system" / "share").mkdir(parents=True)
+    return tmp_path
+
+
+def install_system_package(workspace, name):
+    folder = workspace / "system" / "share" / name
+    folder.mkdir()
+    (folder / "package.xml").write_text(MANIFEST % name)
+    return folder
+
+
+def apply(workspace, *extra):
+    result = run("apply", "--src", str(workspace / "ws" / "src"), "--prefix", str(workspace / "system"), *extra)
+    assert result.returncode == 0, result.stderr
+    return result
+
+
+def test_without_system_packages_both_dropins_are_used(workspace):
+    result = apply(workspace)
+    src = workspace / "ws" / "src"
+    assert sorted(result.stdout.split()) == [str(src / "gazebo_ros"), str(src / "xacro")]
+    assert not (src / "xacro" / "CATKIN_IGNORE").exists()
+    assert sorted(p.name for p in find_packages(str(src)).values()) == ["gazebo_ros", "user_pkg", "xacro"]
+
+
+def test_system_package_wins_for_catkin_rospack_and_rospkg(workspace):
+    system_xacro = install_system_package(workspace, "xacro")
+    result = apply(workspace)
+    src = workspace / "ws" / "src"
+    assert result.stdout.split() == [str(src / "gazebo_ros")]
+    assert "xacro: the system's %s is used" % system_xacro in result.stderr
+    assert (src / "xacro" / "CATKIN_IGNORE").read_text().startswith("# written by scripts/lib/dropins.py")
+    # catkin_make and catkin-tools take their package list from catkin_pkg
+    assert sorted(p.name for p in find_packages(str(src)).values()) == ["gazebo_ros", "user_pkg"]
+    order = subprocess.run(["catkin_topological_order", str(src)], stdout=subprocess.PIPE, universal_newlines=True)
+    assert "xacro" not in order.stdout and "gazebo_ros" in order.stdout
+    # the workspace comes first on ROS_PACKAGE_PATH (devel/setup.bash puts it there), yet the system's is found
+    package_path = "%s:%s" % (src, workspace / "system" / "share")
+    env = dict(os.environ, ROS_PACKAGE_PATH=package_path)
+    found = subprocess.run(["rospack", "find", "xacro"], stdout=subprocess.PIPE, universal_newlines=True, env=env)
+    assert found.stdout.strip() == str(system_xacro)
+    rospack = rospkg.RosPack(ros_paths=package_path.split(":"))
+    assert rospack.get_path("xacro") == str(system_xacro)
+    assert rospack.get_path("gazebo_ros") == str(src / "gazebo_ros")
+
+
+def test_an_installed_dropin_is_not_a_system_package(workspace):
+    """catkin_make install puts the drop-in's package.xml into share/: that copy must not ignore its source."""
+    installed = workspace / "system" / "share" / "xacro"
+    installed.mkdir()
+    shutil.copy(os.path.join(SRC, "xacro", "package.xml"), str(installed / "package.xml"))
+    result = apply(workspace)
+    assert str(workspace / "ws" / "src" / "xacro") in result.stdout.split()
+    assert not (workspace / "ws" / "src" / "xacro" / "CATKIN_IGNORE").exists()
+
+
+def test_ignored_dropin_leftovers_leave_the_devel_space(workspace):
+    devel = workspace / "ws" / "devel"
+    for leftover in ("share/xacro/cmake", "lib/xacro", "share/gazebo_ros/cmake"):
+        (devel / leftover).mkdir(parents=True)
+    install_system_package(workspace, "xacro")
+    apply(workspace, "--devel", str(devel))
+    assert not (devel / "share" / "xacro").exists() and not (devel / "lib" / "xacro").exists()
+    assert (devel / "share" / "gazebo_ros" / "cmake").is_dir()
+
+
+def test_dropin_comes_back_when_the_system_package_goes(workspace):
+    system_gazebo_ros = install_system_package(workspace, "gazebo_ros")
+    apply(workspace)
+    ignore = workspace / "ws" / "src" / "gazebo_ros" / "CATKIN_IGNORE"
+    assert ignore.exists()
+    shutil.rmtree(str(system_gazebo_ros))
+    result = apply(workspace)
+    assert not ignore.exists()
+    assert str(workspace / "ws" / "src" / "gazebo_ros") in result.stdout.split()
+
+
+def test_a_users_own_catkin_ignore_is_left_alone(workspace):
+    ignore = workspace / "ws" / "src" / "gazebo_ros" / "CATKIN_IGNORE"
+    ignore.write_text("")
+    result = apply(workspace)
+    assert ignore.exists()
+    assert "has a CATKIN_IGNORE of its own: left alone" in result.stderr
+    assert str(workspace / "ws" / "src" / "gazebo_ros") not in result.stdout.split()
+
+
+def test_pypi_requirements_only_for_dropins_in_use_and_missing(workspace):
+    target = workspace / "pypi"
+    target.mkdir()
+    args = ("pypi-missing", "--src", str(workspace / "ws" / "src"), "--prefix", str(workspace / "system"))
+    requirements = str(workspace / "ws" / "src" / "xacro" / "pypi-requirements.txt")
+    assert run(*args, "--target", str(target)).stdout.split() == [requirements]
+    pin = [line for line in open(requirements) if line.startswith("xacro==")][0].split()[0]
+    (target / ("xacro-%s.dist-info" % pin.split("==")[1])).mkdir()
+    assert run(*args, "--target", str(target)).stdout.split() == []
+    (target / ("xacro-%s.dist-info" % pin.split("==")[1])).rmdir()
+    install_system_package(workspace, "xacro")
+    assert run(*args, "--target", str(target)).stdout.split() == []
+
+
+@pytest.mark.parametrize("platform", ["debian", "ubuntu"])
+def test_resolver_installs_the_real_xacro_where_the_platform_has_it(platform):
+    result = subprocess.run(
+        [sys.executable, os.path.join(REPO, "scripts", "lib", "resolve_deps.py"), "--platform", platform],
+        stdout=subprocess.PIPE,
+        universal_newlines=True,
+    )
+    packages = result.stdout.split()
+    if platform == "ubuntu":
+        assert "ros-noetic-xacro" in packages
+    else:
+        assert "python3-pip" in packages and not any("xacro" in p for p in packages)
+    # gazebo_ros is never installed: on a system without Gazebo the drop-in is the one
+    assert not any("gazebo-ros" in p for p in packages)
