@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Dict, List, Optional, Set, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
+from turtle_sim_ode.models.materials import sdf_link_color
 from turtle_sim_ode.models.text import ModelError, child_text, parse_xml, read_number, read_optional_number
 from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
@@ -335,6 +336,7 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
         if not static and _bool(element, flag, what, normal) != normal:
             model.warnings.append(f"{what}: <{flag}> is not supported, ignored")
     link = Link(name, None if static else _parse_inertial(element.find("inertial"), name, model.warnings))
+    link.color = sdf_link_color(element)
     surface: Dict[str, float] = {}
     for index, collision in enumerate(element.findall("collision")):
         collision_name = collision.get("name") or f"{name}_collision_{index}"

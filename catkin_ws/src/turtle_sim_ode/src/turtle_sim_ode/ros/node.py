@@ -22,7 +22,8 @@ from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepS
 from turtle_sim_ode.models.sdf import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.gazebo_api import GazeboApi
-from turtle_sim_ode.ros.plugin_topics import Periodic, model_interfaces, sim_stamp
+from turtle_sim_ode.ros.periodic import Periodic, sim_stamp
+from turtle_sim_ode.ros.plugin_topics import model_interfaces
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
 from turtle_sim_ode.ros.wire import ClockPacker, PackedPublisher, release, stamp_parts
 from turtle_sim_ode.world.simulation import Simulation

@@ -19,6 +19,8 @@ from turtle_sim_ode_msgs.msg import BumperEvent, CliffEvent
 
 from turtle_sim_ode.models.builder import BuiltModel, quat_from_rpy, quat_multiply
 from turtle_sim_ode.physics.world import PhysicsWorld
+from turtle_sim_ode.ros.camera_topics import CameraPublisher
+from turtle_sim_ode.ros.periodic import Periodic, plugin_topic, topic_prefix
 from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import (
     ImuPacker,
@@ -29,8 +31,8 @@ from turtle_sim_ode.ros.wire import (
     Quat,
     TransformPacker,
     release,
-    stamp_parts,
 )
+from turtle_sim_ode.sensors.camera import CameraSensor, scene_colours
 from turtle_sim_ode.sensors.config import ContactConfig, ImuConfig
 from turtle_sim_ode.sensors.imu import ImuSensor
 from turtle_sim_ode.sensors.kobuki import BumperSensor, CliffSensor
@@ -82,55 +84,12 @@ ODOM_TWIST_COVARIANCE = ODOM_POSE_COVARIANCE
 Vec3 = Tuple[float, float, float]
 
 
-def sim_stamp(seconds: float) -> rospy.Time:
-    return rospy.Time(*stamp_parts(seconds))
-
-
 def rotate_inverse(q: Sequence[float], v: Sequence[float]) -> Vec3:
     """Rotate vector v by the inverse of unit quaternion q (x, y, z, w): world axes to body axes."""
     x, y, z, w = -q[0], -q[1], -q[2], q[3]
     vx, vy, vz = v
     tx, ty, tz = 2 * (y * vz - z * vy), 2 * (z * vx - x * vz), 2 * (x * vy - y * vx)
     return (vx + w * tx + y * tz - z * ty, vy + w * ty + z * tx - x * tz, vz + w * tz + x * ty - y * tx)
-
-
-def topic_prefix(namespace: str) -> str:
-    """A model's robot namespace prefixes its plugin topics, as gazebo_ros plugins do."""
-    namespace = namespace.strip("/")
-    return namespace + "/" if namespace else ""
-
-
-def plugin_topic(namespace: str, topic: str) -> str:
-    """A plugin's topic in the model's namespace; an absolute topic name stays as it is."""
-    return topic if topic.startswith("/") else topic_prefix(namespace) + topic
-
-
-class Periodic:
-    """A publisher with its own rate in sim time."""
-
-    def __init__(self, period: float) -> None:
-        self._period = period
-        self._next = 0.0
-
-    @property
-    def next_due(self) -> float:
-        """Sim time from which ``publish_due`` publishes (less 1e-9 s of rounding)."""
-        return self._next
-
-    def restart(self, now: float) -> None:
-        self._next = now
-
-    def publish_due(self, now: float, stamp: rospy.Time) -> None:
-        """Publish if due at sim time ``now``; ``stamp`` is ``sim_stamp(now)``, made once for all that fall due."""
-        if now >= self._next - 1e-9:
-            self._next = max(self._next + self._period, now)
-            self.publish(stamp, now)
-
-    def publish(self, stamp: rospy.Time, now: float) -> None:
-        raise NotImplementedError
-
-    def close(self) -> None:
-        raise NotImplementedError
 
 
 class DriveInterface(Periodic):
@@ -544,4 +503,7 @@ def model_interfaces(
                 interfaces.append(publisher)
         for config in plugins.contacts:
             interfaces.append(ContactsPublisher(sim, model, config, namespace))
+        for config in plugins.cameras:
+            sensor = CameraSensor(sim.physics, model, config)
+            interfaces.append(CameraPublisher(sensor, lambda: scene_colours(sim.models.values()), namespace))
     return interfaces

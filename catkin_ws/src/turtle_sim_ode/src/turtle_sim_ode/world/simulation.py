@@ -114,10 +114,11 @@ class Simulation(WorldControl):
         plugins.lasers = [laser for laser in sensors.lasers if laser.topic]
         plugins.imus += sensors.imus
         plugins.contacts = sensors.contacts
+        plugins.cameras = sensors.cameras
         self.models[name] = model
         self.plugins[name] = plugins
         self._spawned[name] = _Spawned.of(model)
-        return warnings + plugins.warnings
+        return warnings + plugins.warnings + sensors.warnings
 
     def _spawn_pose(self, pose: SpawnPose, reference_frame: str) -> Pose6:
         """(x, y, z, roll, pitch, yaw) in the world for build_model."""

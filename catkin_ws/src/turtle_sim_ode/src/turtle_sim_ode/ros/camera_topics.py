@@ -1,0 +1,155 @@
+"""The ROS side of the camera plugins (libgazebo_ros_camera.so, libgazebo_ros_openni_kinect.so,
+libgazebo_ros_depth_camera.so): sensor_msgs/Image, CameraInfo and PointCloud2 of a CameraSensor, all of one
+rendering with one sim-time stamp, in the plugin's frameName. Nothing is rendered while no one subscribes to an
+image, depth image or point cloud topic; camera_info alone costs no rendering."""
+from __future__ import annotations
+
+from io import BytesIO
+from typing import Callable, Dict, Optional
+
+import numpy as np
+import rospy
+from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
+
+from turtle_sim_ode.ros.periodic import Periodic, plugin_topic, topic_prefix
+from turtle_sim_ode.ros.wire import PackedPublisher, release
+from turtle_sim_ode.sensors.camera import CameraSensor, Frame
+from turtle_sim_ode.sensors.config import CameraConfig
+
+# sensor_msgs/PointCloud2 as gazebo_ros_openni_kinect lays it out (PointCloud2Modifier "xyz", "rgb"): x, y, z
+# float32, 4 bytes of padding, rgb (a float32's bytes: b, g, r, 0 as PCL and rviz read them), padding to 32.
+POINT_STEP = 32
+POINT_FIELDS = [
+    PointField("x", 0, PointField.FLOAT32, 1),
+    PointField("y", 4, PointField.FLOAT32, 1),
+    PointField("z", 8, PointField.FLOAT32, 1),
+    PointField("rgb", 16, PointField.FLOAT32, 1),
+]
+
+
+def camera_info(config: CameraConfig, frame: str, cx: float, cy: float) -> CameraInfo:
+    """K and P of an ideal pinhole (no distortion: plumb_bob with zeros) for ``config``'s size and FOV."""
+    f = config.focal_length
+    info = CameraInfo()
+    info.header.frame_id = frame
+    info.width, info.height = config.width, config.height
+    info.distortion_model = "plumb_bob"
+    info.D = [0.0] * 5
+    info.K = [f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0]
+    info.R = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+    info.P = [f, 0.0, cx, 0.0, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+    return info
+
+
+def _packer(message: object) -> Callable[..., bytes]:
+    """Packs ``message`` (its header's seq and stamp, and whatever ``fill`` sets) the way genpy serialises it."""
+
+    def pack(seq: int, secs: int, nsecs: int, fill: Optional[Callable[[object], None]] = None) -> bytes:
+        header = message.header  # type: ignore[attr-defined]
+        header.seq, header.stamp.secs, header.stamp.nsecs = seq, secs, nsecs
+        if fill is not None:
+            fill(message)
+        buffer = BytesIO()
+        message.serialize(buffer)  # type: ignore[attr-defined]
+        return buffer.getvalue()
+
+    return pack
+
+
+def colour_image(rgb: np.ndarray, encoding: str) -> bytes:
+    if encoding == "bgr8":
+        return rgb[:, :, ::-1].tobytes()
+    if encoding == "mono8":
+        grey = rgb.astype(np.float32) @ np.array([0.299, 0.587, 0.114], dtype=np.float32)
+        return (grey + 0.5).astype(np.uint8).tobytes()
+    return rgb.tobytes()
+
+
+def cloud_bytes(points: np.ndarray, rgb: np.ndarray) -> bytes:
+    """The organised cloud's data: per point x, y, z, pad, rgb (b, g, r, 0), pad x3 (POINT_STEP bytes)."""
+    height, width = points.shape[:2]
+    data = np.zeros((height, width, POINT_STEP // 4), dtype=np.float32)
+    data[:, :, :3] = points
+    colour = data.view(np.uint8).reshape(height, width, POINT_STEP)
+    colour[:, :, 16] = rgb[:, :, 2]
+    colour[:, :, 17] = rgb[:, :, 1]
+    colour[:, :, 18] = rgb[:, :, 0]
+    return data.tobytes()
+
+
+class CameraPublisher(Periodic):
+    """A camera or depth camera plugin's topics, under ``robotNamespace``/``cameraName`` as gazebo_ros has them."""
+
+    def __init__(self, sensor: CameraSensor, colours: Callable[[], Dict], namespace: str) -> None:
+        """``colours``: each geom's colour now (sensors.camera.scene_colours of the world's models)."""
+        config = sensor.config
+        super().__init__(1.0 / config.update_rate)
+        self._sensor = sensor
+        self._colours = colours
+        prefix = topic_prefix(namespace or config.robot_namespace) + topic_prefix(config.camera_name)
+
+        def topic(name: str) -> str:
+            return plugin_topic("", name) if name.startswith("/") else prefix + name
+
+        frame = sensor.frame
+        info = camera_info(config, frame, sensor.cx, sensor.cy)
+        image = Image(encoding=config.encoding, height=config.height, width=config.width)
+        image.header.frame_id = frame
+        image.step = config.width * (1 if config.encoding == "mono8" else 3)
+        self._image = (PackedPublisher(topic(config.image_topic), Image), _packer(image))
+        self._info = (PackedPublisher(topic(config.info_topic), CameraInfo), _packer(info))
+        self._channels = [self._image, self._info]
+        self._depth = self._depth_info = self._points = None
+        if config.depth:
+            depth = Image(encoding="32FC1", height=config.height, width=config.width, step=4 * config.width)
+            depth.header.frame_id = frame
+            cloud = PointCloud2(height=config.height, width=config.width, fields=POINT_FIELDS)
+            cloud.header.frame_id = frame
+            cloud.point_step, cloud.row_step = POINT_STEP, POINT_STEP * config.width
+            depth_info = camera_info(config, frame, sensor.cx, sensor.cy)
+            self._depth = (PackedPublisher(topic(config.depth_topic), Image), _packer(depth))
+            self._depth_info = (PackedPublisher(topic(config.depth_info_topic), CameraInfo), _packer(depth_info))
+            self._points = (PackedPublisher(topic(config.points_topic), PointCloud2), _packer(cloud))
+            self._channels += [self._depth, self._depth_info, self._points]
+        self.rendered = 0  # renderings made: none while no image, depth or cloud subscriber listens
+
+    @staticmethod
+    def _heard(channel: Optional[tuple]) -> bool:
+        return channel is not None and channel[0].get_num_connections() > 0
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        secs, nsecs = stamp.secs, stamp.nsecs
+        for channel in (self._info, self._depth_info):
+            if self._heard(channel):
+                channel[0].publish(channel[1], secs, nsecs)
+        image, depth, points = (self._heard(c) for c in (self._image, self._depth, self._points))
+        if not (image or depth or points):
+            return
+        frame: Frame = self._sensor.render(self._colours())
+        self.rendered += 1
+        encoding = self._sensor.config.encoding
+        if image:
+
+            def fill_image(message: Image) -> None:
+                message.data = colour_image(frame.rgb, encoding)
+
+            self._image[0].publish(self._image[1], secs, nsecs, fill_image)
+        if depth:
+            depth_image = self._sensor.depth_image(frame)
+
+            def fill_depth(message: Image) -> None:
+                message.data = depth_image.tobytes()
+
+            self._depth[0].publish(self._depth[1], secs, nsecs, fill_depth)  # type: ignore[index]
+        if points:
+            cloud = self._sensor.points(frame)
+
+            def fill_cloud(message: PointCloud2) -> None:
+                message.data = cloud_bytes(cloud, frame.rgb)
+                message.is_dense = bool(np.isfinite(cloud).all())
+
+            self._points[0].publish(self._points[1], secs, nsecs, fill_cloud)  # type: ignore[index]
+
+    def close(self) -> None:
+        for publisher, _ in self._channels:
+            release(publisher)
