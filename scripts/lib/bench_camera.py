@@ -93,7 +93,7 @@ def turtlebot_in_room(camera: Optional[Tuple[int, int, float]]) -> Tuple[Any, Li
 
 def frame_work(sim: Any, config: Any) -> Callable[[], None]:
     """One frame as CameraPublisher makes it with every topic subscribed: render, colour image, depth, cloud bytes."""
-    from turtle_sim_ode.ros.camera_topics import cloud_bytes, colour_image
+    from turtle_sim_ode.ros.camera_topics import colour_image
     from turtle_sim_ode.sensors.camera import CameraSensor, scene_colours
 
     sensor = CameraSensor(sim.physics, sim.models[MODEL], config)
@@ -101,8 +101,9 @@ def frame_work(sim: Any, config: Any) -> Callable[[], None]:
     def work() -> None:
         frame = sensor.render(scene_colours(sim.models.values()))
         colour_image(frame.rgb, config.encoding)
-        sensor.depth_image(frame).tobytes()
-        cloud_bytes(sensor.points(frame), frame.rgb)
+        depth, cloud, _ = sensor.organised_cloud(frame)
+        depth.tobytes()
+        cloud.tobytes()
 
     return work
 

@@ -13,12 +13,12 @@ from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 
 from turtle_sim_ode.ros.periodic import Periodic, plugin_topic, topic_prefix
 from turtle_sim_ode.ros.wire import PackedPublisher, release
-from turtle_sim_ode.sensors.camera import CameraSensor, Frame
+from turtle_sim_ode.sensors.camera import CLOUD_POINT_STEP, CameraSensor, Frame
 from turtle_sim_ode.sensors.config import CameraConfig
 
 # sensor_msgs/PointCloud2 as gazebo_ros_openni_kinect lays it out (PointCloud2Modifier "xyz", "rgb"): x, y, z
 # float32, 4 bytes of padding, rgb (a float32's bytes: b, g, r, 0 as PCL and rviz read them), padding to 32.
-POINT_STEP = 32
+POINT_STEP = CLOUD_POINT_STEP
 POINT_FIELDS = [
     PointField("x", 0, PointField.FLOAT32, 1),
     PointField("y", 4, PointField.FLOAT32, 1),
@@ -63,18 +63,6 @@ def colour_image(rgb: np.ndarray, encoding: str) -> bytes:
         grey = rgb.astype(np.float32) @ np.array([0.299, 0.587, 0.114], dtype=np.float32)
         return (grey + 0.5).astype(np.uint8).tobytes()
     return rgb.tobytes()
-
-
-def cloud_bytes(points: np.ndarray, rgb: np.ndarray) -> bytes:
-    """The organised cloud's data: per point x, y, z, pad, rgb (b, g, r, 0), pad x3 (POINT_STEP bytes)."""
-    height, width = points.shape[:2]
-    data = np.zeros((height, width, POINT_STEP // 4), dtype=np.float32)
-    data[:, :, :3] = points
-    colour = data.view(np.uint8).reshape(height, width, POINT_STEP)
-    colour[:, :, 16] = rgb[:, :, 2]
-    colour[:, :, 17] = rgb[:, :, 1]
-    colour[:, :, 18] = rgb[:, :, 0]
-    return data.tobytes()
 
 
 class CameraPublisher(Periodic):
@@ -134,19 +122,20 @@ class CameraPublisher(Periodic):
                 message.data = colour_image(frame.rgb, encoding)
 
             self._image[0].publish(self._image[1], secs, nsecs, fill_image)
+        if not (depth or points):
+            return
+        depth_image, cloud, dense = self._sensor.organised_cloud(frame)
         if depth:
-            depth_image = self._sensor.depth_image(frame)
 
             def fill_depth(message: Image) -> None:
                 message.data = depth_image.tobytes()
 
             self._depth[0].publish(self._depth[1], secs, nsecs, fill_depth)  # type: ignore[index]
         if points:
-            cloud = self._sensor.points(frame)
 
             def fill_cloud(message: PointCloud2) -> None:
-                message.data = cloud_bytes(cloud, frame.rgb)
-                message.is_dense = bool(np.isfinite(cloud).all())
+                message.data = cloud.tobytes()
+                message.is_dense = dense
 
             self._points[0].publish(self._points[1], secs, nsecs, fill_cloud)  # type: ignore[index]
 

@@ -19,6 +19,8 @@ from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, quat_f
 from turtle_sim_ode.models.materials import DEFAULT_COLOR, GAZEBO_MATERIALS, RGB
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.config import CameraConfig
+from turtle_sim_ode.sensors.ray_kernel import RayCaster
+from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
 from turtle_sim_ode.sensors.raycast import hit_plane, primitive
 from turtle_sim_ode.sensors.rays import world_geoms
 
@@ -27,6 +29,7 @@ SKY_COLOR: RGB = (0.7, 0.7, 0.7)
 GROUND_COLOR: RGB = GAZEBO_MATERIALS["Gazebo/Grey"]
 SUN_DIRECTION = (-0.5, 0.1, -0.9)
 AMBIENT = 0.4  # share of a surface's colour lit from everywhere; the rest from the sun, by the cosine law
+CLOUD_POINT_STEP = 32  # bytes a point: x, y, z, padding, rgb, padding (PointCloud2Modifier "xyz", "rgb")
 # Optical frame from sensor frame (rows: optical x, y, z in sensor axes).
 OPTICAL_FROM_SENSOR = np.array([[0.0, -1.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]])
 
@@ -63,7 +66,9 @@ class CameraSensor:
         config: CameraConfig,
         rng: Optional[random.Random] = None,
         sun_direction: Tuple[float, float, float] = SUN_DIRECTION,
+        ray_kernel: bool = True,
     ) -> None:
+        """``ray_kernel``: cast the rays in C (src/ray_kernel.c) when the library is built, else with numpy."""
         model.link_transform(config.link)  # KeyError now for a missing link
         self.physics = physics
         self.model = model
@@ -85,6 +90,12 @@ class CameraSensor:
         self._u, self._v = u, v
         light = -np.asarray(sun_direction, dtype=float)
         self._light = light / np.linalg.norm(light)
+        lib = ray_kernel_library() if ray_kernel else None
+        self._caster = RayCaster(lib, self._optical_dirs) if lib is not None else None
+
+    @property
+    def uses_ray_kernel(self) -> bool:
+        return self._caster is not None
 
     @property
     def frame(self) -> str:
@@ -100,7 +111,7 @@ class CameraSensor:
         """Columns and rows (first, end) where a sphere at ``centre`` (optical frame) may show; None if nowhere."""
         x, y, z = centre
         config = self.config
-        if z + radius < config.near or np.linalg.norm(centre) - radius > config.far:
+        if z + radius < config.near or z - radius > config.far:
             return None
         if z - radius <= 1e-3:  # about the camera's plane: any pixel
             return 0, config.width, 0, config.height
@@ -124,6 +135,26 @@ class CameraSensor:
         """Cast every pixel's ray; ``colours`` gives each geom's colour (see scene_colours)."""
         config = self.config
         origin, rotation = self.optical_pose()
+        if self._caster is not None:
+            ground = self.physics.ground
+            geoms = [ground] + list(world_geoms(self.physics, self.model))
+            _, depth, rgb = self._caster.render(
+                geoms,
+                {**colours, ground: GROUND_COLOR},
+                DEFAULT_COLOR,
+                origin,
+                rotation,
+                config.near,
+                config.far,
+                (self.focal_length, self.cx, self.cy),
+                self._light,
+                AMBIENT,
+                SKY_COLOR,
+            )
+            if config.noise_stddev > 0 or config.noise_mean != 0:
+                noisy = rgb / 255.0 + self._rng.normal(config.noise_mean, config.noise_stddev, rgb.shape)
+                rgb = (np.clip(noisy, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+            return Frame(rgb, depth, (origin, rotation))
         height, width = config.height, config.width
         dirs = self._optical_dirs @ rotation.T  # world directions (H, W, 3)
         distance = np.full((height, width), np.inf)
@@ -171,6 +202,25 @@ class CameraSensor:
         depth = frame.depth
         keep = (depth > self.config.cutoff) & (depth < self.config.cutoff_max)
         return np.where(keep, depth, np.float32(np.nan)).astype(np.float32)
+
+    def organised_cloud(self, frame: Frame) -> Tuple[np.ndarray, np.ndarray, bool]:
+        """The depth image (see depth_image), the organised cloud's bytes in gazebo_ros_openni_kinect's
+        PointCloud2 layout ((H, W, CLOUD_POINT_STEP) uint8: x, y, z float32 at 0, 4, 8, NaN outside the cutoffs;
+        b, g, r at 16, 17, 18 as PCL packs rgb) and whether every point is finite."""
+        config = self.config
+        if self._caster is not None:
+            lens = (self.focal_length, self.cx, self.cy)
+            depth, cloud, missing = self._caster.cloud(frame.depth, frame.rgb, lens, config.cutoff, config.cutoff_max)
+            return depth, cloud, missing == 0
+        depth = self.depth_image(frame)
+        height, width = depth.shape
+        data = np.zeros((height, width, CLOUD_POINT_STEP // 4), dtype=np.float32)
+        data[:, :, 0] = depth * self._u[None, :]
+        data[:, :, 1] = depth * self._v[:, None]
+        data[:, :, 2] = depth
+        cloud = data.view(np.uint8).reshape(height, width, CLOUD_POINT_STEP)
+        cloud[:, :, 16:19] = frame.rgb[:, :, ::-1]
+        return depth, cloud, bool(np.isfinite(depth).all())
 
     def points(self, frame: Frame) -> np.ndarray:
         """The organised cloud, (H, W, 3) float32 x, y, z in the optical frame; NaN outside the cutoffs."""
