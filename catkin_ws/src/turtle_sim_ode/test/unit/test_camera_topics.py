@@ -2,6 +2,7 @@
 back with genpy; nothing is rendered while no one subscribes to an image, depth image or cloud."""
 from __future__ import annotations
 
+import io
 import math
 import struct
 from typing import Dict, List
@@ -103,3 +104,16 @@ def test_one_rendering_feeds_image_depth_and_cloud_with_one_stamp(publisher) -> 
     assert z == pytest.approx(1.5, abs=0.01)
     b, g, r = cloud.data[offset + 16 : offset + 19]
     assert r > 2 * max(g, b)  # packed as PCL reads rgb: 0x00RRGGBB in a little-endian float
+
+
+def test_the_spliced_data_is_byte_for_byte_what_genpy_writes(publisher) -> None:
+    _, camera = publisher
+    messages = camera_topics.templates(camera)
+    data = np.arange(2 * 3 * 32, dtype=np.uint8).reshape(2, 3, 32)
+    for key, extra in (("image", ()), ("depth", ()), ("points", (False,))):
+        message = messages[key]
+        packed = camera_topics.packer(message)(7, 8, 9, data, *extra)
+        message.data = data.tobytes()
+        buffer = io.BytesIO()
+        message.serialize(buffer)
+        assert packed == buffer.getvalue(), key

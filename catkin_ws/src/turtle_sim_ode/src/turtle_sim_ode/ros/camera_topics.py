@@ -4,8 +4,9 @@ rendering with one sim-time stamp, in the plugin's frameName. Nothing is rendere
 image, depth image or point cloud topic; camera_info alone costs no rendering."""
 from __future__ import annotations
 
+import struct
 from io import BytesIO
-from typing import Callable, Dict, Optional
+from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 import rospy
@@ -19,6 +20,7 @@ from turtle_sim_ode.sensors.config import CameraConfig
 # sensor_msgs/PointCloud2 as gazebo_ros_openni_kinect lays it out (PointCloud2Modifier "xyz", "rgb"): x, y, z
 # float32, 4 bytes of padding, rgb (a float32's bytes: b, g, r, 0 as PCL and rviz read them), padding to 32.
 POINT_STEP = CLOUD_POINT_STEP
+_UINT32 = struct.Struct("<I")
 POINT_FIELDS = [
     PointField("x", 0, PointField.FLOAT32, 1),
     PointField("y", 4, PointField.FLOAT32, 1),
@@ -41,28 +43,54 @@ def camera_info(config: CameraConfig, frame: str, cx: float, cy: float) -> Camer
     return info
 
 
-def _packer(message: object) -> Callable[..., bytes]:
-    """Packs ``message`` (its header's seq and stamp, and whatever ``fill`` sets) the way genpy serialises it."""
+def packer(message: Any) -> Callable[..., bytes]:
+    """Packs ``message`` with a header seq and stamp, as genpy serialises it; with ``data`` (an array or bytes) as
+    its uint8[] ``data`` field, spliced in with one copy (genpy would copy megabytes of a cloud four times), and
+    ``is_dense`` for a cloud."""
 
-    def pack(seq: int, secs: int, nsecs: int, fill: Optional[Callable[[object], None]] = None) -> bytes:
-        header = message.header  # type: ignore[attr-defined]
+    def pack(seq: int, secs: int, nsecs: int, data: Any = None, is_dense: Optional[bool] = None) -> bytes:
+        header = message.header
         header.seq, header.stamp.secs, header.stamp.nsecs = seq, secs, nsecs
-        if fill is not None:
-            fill(message)
+        if is_dense is not None:
+            message.is_dense = is_dense
         buffer = BytesIO()
-        message.serialize(buffer)  # type: ignore[attr-defined]
-        return buffer.getvalue()
+        message.serialize(buffer)  # data empty: a length of 0, then is_dense for a cloud
+        raw = buffer.getvalue()
+        if data is None:
+            return raw
+        view = memoryview(np.ascontiguousarray(data)).cast("B") if isinstance(data, np.ndarray) else data
+        tail = len(raw) - (1 if isinstance(message, PointCloud2) else 0)
+        return b"".join((raw[: tail - 4], _UINT32.pack(len(view)), view, raw[tail:]))
 
     return pack
 
 
-def colour_image(rgb: np.ndarray, encoding: str) -> bytes:
+def templates(sensor: CameraSensor) -> Dict[str, Any]:
+    """The messages of a camera, but for stamps and data: image, info, and for a depth camera depth, depth_info
+    and points."""
+    config, frame = sensor.config, sensor.frame
+    image = Image(encoding=config.encoding, height=config.height, width=config.width)
+    image.step = config.width * (1 if config.encoding == "mono8" else 3)
+    found = {"image": image, "info": camera_info(config, frame, sensor.cx, sensor.cy)}
+    if config.depth:
+        found["depth"] = Image(encoding="32FC1", height=config.height, width=config.width, step=4 * config.width)
+        found["depth_info"] = camera_info(config, frame, sensor.cx, sensor.cy)
+        cloud = PointCloud2(height=config.height, width=config.width, fields=POINT_FIELDS)
+        cloud.point_step, cloud.row_step = POINT_STEP, POINT_STEP * config.width
+        found["points"] = cloud
+    for message in found.values():
+        message.header.frame_id = frame
+    return found
+
+
+def colour_image(rgb: np.ndarray, encoding: str) -> np.ndarray:
+    """The image's pixels in ``encoding`` (rgb8, bgr8 or mono8)."""
     if encoding == "bgr8":
-        return rgb[:, :, ::-1].tobytes()
+        return rgb[:, :, ::-1]
     if encoding == "mono8":
         grey = rgb.astype(np.float32) @ np.array([0.299, 0.587, 0.114], dtype=np.float32)
-        return (grey + 0.5).astype(np.uint8).tobytes()
-    return rgb.tobytes()
+        return (grey + 0.5).astype(np.uint8)
+    return rgb
 
 
 class CameraPublisher(Periodic):
@@ -79,25 +107,16 @@ class CameraPublisher(Periodic):
         def topic(name: str) -> str:
             return plugin_topic("", name) if name.startswith("/") else prefix + name
 
-        frame = sensor.frame
-        info = camera_info(config, frame, sensor.cx, sensor.cy)
-        image = Image(encoding=config.encoding, height=config.height, width=config.width)
-        image.header.frame_id = frame
-        image.step = config.width * (1 if config.encoding == "mono8" else 3)
-        self._image = (PackedPublisher(topic(config.image_topic), Image), _packer(image))
-        self._info = (PackedPublisher(topic(config.info_topic), CameraInfo), _packer(info))
+        messages = templates(sensor)
+        self._image = (PackedPublisher(topic(config.image_topic), Image), packer(messages["image"]))
+        self._info = (PackedPublisher(topic(config.info_topic), CameraInfo), packer(messages["info"]))
         self._channels = [self._image, self._info]
         self._depth = self._depth_info = self._points = None
         if config.depth:
-            depth = Image(encoding="32FC1", height=config.height, width=config.width, step=4 * config.width)
-            depth.header.frame_id = frame
-            cloud = PointCloud2(height=config.height, width=config.width, fields=POINT_FIELDS)
-            cloud.header.frame_id = frame
-            cloud.point_step, cloud.row_step = POINT_STEP, POINT_STEP * config.width
-            depth_info = camera_info(config, frame, sensor.cx, sensor.cy)
-            self._depth = (PackedPublisher(topic(config.depth_topic), Image), _packer(depth))
-            self._depth_info = (PackedPublisher(topic(config.depth_info_topic), CameraInfo), _packer(depth_info))
-            self._points = (PackedPublisher(topic(config.points_topic), PointCloud2), _packer(cloud))
+            self._depth = (PackedPublisher(topic(config.depth_topic), Image), packer(messages["depth"]))
+            depth_info = packer(messages["depth_info"])
+            self._depth_info = (PackedPublisher(topic(config.depth_info_topic), CameraInfo), depth_info)
+            self._points = (PackedPublisher(topic(config.points_topic), PointCloud2), packer(messages["points"]))
             self._channels += [self._depth, self._depth_info, self._points]
         self.rendered = 0  # renderings made: none while no image, depth or cloud subscriber listens
 
@@ -115,29 +134,16 @@ class CameraPublisher(Periodic):
             return
         frame: Frame = self._sensor.render(self._colours())
         self.rendered += 1
-        encoding = self._sensor.config.encoding
         if image:
-
-            def fill_image(message: Image) -> None:
-                message.data = colour_image(frame.rgb, encoding)
-
-            self._image[0].publish(self._image[1], secs, nsecs, fill_image)
+            rgb = colour_image(frame.rgb, self._sensor.config.encoding)
+            self._image[0].publish(self._image[1], secs, nsecs, rgb)
         if not (depth or points):
             return
         depth_image, cloud, dense = self._sensor.organised_cloud(frame)
         if depth:
-
-            def fill_depth(message: Image) -> None:
-                message.data = depth_image.tobytes()
-
-            self._depth[0].publish(self._depth[1], secs, nsecs, fill_depth)  # type: ignore[index]
+            self._depth[0].publish(self._depth[1], secs, nsecs, depth_image)  # type: ignore[index]
         if points:
-
-            def fill_cloud(message: PointCloud2) -> None:
-                message.data = cloud.tobytes()
-                message.is_dense = dense
-
-            self._points[0].publish(self._points[1], secs, nsecs, fill_cloud)  # type: ignore[index]
+            self._points[0].publish(self._points[1], secs, nsecs, cloud, dense)  # type: ignore[index]
 
     def close(self) -> None:
         for publisher, _ in self._channels:

@@ -206,7 +206,8 @@ class CameraSensor:
     def organised_cloud(self, frame: Frame) -> Tuple[np.ndarray, np.ndarray, bool]:
         """The depth image (see depth_image), the organised cloud's bytes in gazebo_ros_openni_kinect's
         PointCloud2 layout ((H, W, CLOUD_POINT_STEP) uint8: x, y, z float32 at 0, 4, 8, NaN outside the cutoffs;
-        b, g, r at 16, 17, 18 as PCL packs rgb) and whether every point is finite."""
+        b, g, r at 16, 17, 18 as PCL packs rgb) and whether every point is finite. With the ray kernel the arrays
+        are overwritten by the next call."""
         config = self.config
         if self._caster is not None:
             lens = (self.focal_length, self.cx, self.cy)

@@ -73,6 +73,10 @@ class RayCaster:
         height, width = dirs.shape[:2]
         self.size = (width, height)
         self.tests = 0  # ray tests made by the last render
+        # Scratch and cloud buffers, reused frame after frame (fresh megabytes cost page faults every frame).
+        self._distance = np.empty((height, width))
+        self._depth_out = np.empty((height, width), dtype=np.float32)
+        self._cloud = np.empty((height, width, 32), dtype=np.uint8)
 
     def render(
         self,
@@ -91,7 +95,7 @@ class RayCaster:
         rows = [row for row in (primitive_row(g, colours.get(g, default)) for g in geoms) if row is not None]
         table = np.ascontiguousarray(np.array(rows) if rows else np.zeros((0, STRIDE)))
         width, height = self.size
-        distance = np.empty((height, width))
+        distance = self._distance
         depth = np.empty((height, width), dtype=np.float32)
         rgb = np.empty((height, width, 3), dtype=np.uint8)
         origin = np.ascontiguousarray(origin, dtype=np.float64)
@@ -122,12 +126,12 @@ class RayCaster:
     def cloud(
         self, depth: np.ndarray, rgb: np.ndarray, lens: Tuple[float, float, float], cutoff: float, cutoff_max: float
     ) -> Tuple[np.ndarray, np.ndarray, int]:
-        """tso_cloud: the depth image within the cutoffs, the cloud's bytes (H, W, 32) and how many points are NaN."""
+        """tso_cloud: the depth image within the cutoffs, the cloud's bytes (H, W, 32) and how many points are NaN.
+        The two arrays are overwritten by the next call."""
         width, height = self.size
         depth = np.ascontiguousarray(depth, dtype=np.float32)
         rgb = np.ascontiguousarray(rgb, dtype=np.uint8)
-        depth_out = np.empty((height, width), dtype=np.float32)
-        cloud = np.empty((height, width, 32), dtype=np.uint8)
+        depth_out, cloud = self._depth_out, self._cloud
         missing = self._lib.tso_cloud(
             width,
             height,
