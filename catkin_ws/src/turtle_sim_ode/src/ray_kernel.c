@@ -1,7 +1,8 @@
 /* The cameras' ray caster (loaded by turtle_sim_ode.sensors.ray_kernel through ctypes): one ray per pixel from the
  * optical centre against primitive shapes (box, sphere, cylinder, capsule along z, plane), each tested only in the
- * pixels its bounding sphere may cover. The same tests as turtle_sim_ode.sensors.raycast, which the Python side
- * uses where this library is not built; see there for the conventions. */
+ * pixels its bounding box's projection may cover. The same tests as turtle_sim_ode.sensors.raycast, which the
+ * Python side uses where this library is not built, but on rays (u, v, 1) whose parameter is the depth, and with
+ * the near clip on depth (numpy: on the distance along the ray). */
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -35,13 +36,14 @@ static double dot3(const double* a, const double* b)
 
 static double hitSphere(const double* o, const double* d, double r, double tMin, double* n)
 {
+  double a = dot3(d, d);
   double b = dot3(d, o);
-  double disc = b * b - (dot3(o, o) - r * r);
+  double disc = b * b - a * (dot3(o, o) - r * r);
   if (disc < 0.0)
   {
     return INFINITY;
   }
-  double t = -b - sqrt(disc);
+  double t = (-b - sqrt(disc)) / a;
   if (t <= tMin)
   {
     return INFINITY;
@@ -231,11 +233,12 @@ static uint8_t channel(double value)
   return (uint8_t)(value <= 0.0 ? 0.0 : value >= 1.0 ? 255.0 : value * 255.0 + 0.5);
 }
 
-/* Render ``count`` primitives seen from ``origin`` with ``rotation`` (world from optical, row-major) through the
- * unit optical ray directions ``dirs`` (height x width x 3): ``distance`` (metres along each ray, INFINITY where
- * nothing is hit within (tMin, far along the optical axis)), ``depth`` (along the optical axis, NAN there) and
- * ``rgb`` (shaded colours, ``sky`` there). Returns the number of ray tests made. */
-long tso_render(int width, int height, const double* dirs, const double* origin, const double* rotation, int count,
+/* Render ``count`` primitives seen from ``origin`` with ``rotation`` (world from optical, row-major), one ray through
+ * each pixel's centre: (u, v, 1) in the optical frame with u = (i - cx) / focal, v = (j - cy) / focal, so that a
+ * ray's parameter at a hit is the hit's depth along the optical axis. Fills ``distance`` (that depth, INFINITY
+ * where nothing is hit at a depth within (tMin, far]), ``depth`` (the same as float, NAN there) and ``rgb`` (shaded
+ * colours, ``sky`` there). Returns the number of ray tests made. */
+long tso_render(int width, int height, const double* origin, const double* rotation, int count,
                 const double* primitives, double tMin, double far, double focal, double cx, double cy,
                 const double* light, double ambient, const double* sky, double* distance, float* depth, uint8_t* rgb)
 {
@@ -305,14 +308,20 @@ long tso_render(int width, int height, const double* dirs, const double* origin,
     double planeStart = type == kPlane ? params[0] - dot3(shape, start) : 0.0;
     for (int j = j0; j < j1; ++j)
     {
+      double v = (j - cy) / focal;
+      double rowBase[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        rowBase[a] = local[3 * a + 1] * v + local[3 * a + 2];
+      }
       for (int i = i0; i < i1; ++i)
       {
         int p = j * width + i;
-        const double* o = dirs + 3L * p;
-        double d[3];
+        double u = (i - cx) / focal;
+        double d[3]; /* the pixel's ray (u, v, 1) in the optical frame, in the shape's frame: t is its depth */
         for (int a = 0; a < 3; ++a)
         {
-          d[a] = local[3 * a] * o[0] + local[3 * a + 1] * o[1] + local[3 * a + 2] * o[2];
+          d[a] = local[3 * a] * u + rowBase[a];
         }
         double n[3];
         double t = INFINITY;
@@ -379,7 +388,7 @@ long tso_render(int width, int height, const double* dirs, const double* origin,
   }
   for (int p = 0; p < pixels; ++p)
   {
-    double z = distance[p] * dirs[3L * p + 2];
+    double z = distance[p];
     if (z <= far)
     {
       depth[p] = (float)z;
@@ -398,13 +407,12 @@ long tso_render(int width, int height, const double* dirs, const double* origin,
 
 /* gazebo_ros_openni_kinect's depth image and organised cloud from a rendering's ``depth`` and ``rgb``: ``depthOut``
  * keeps the depths within (cutoff, cutoffMax), NAN elsewhere; ``cloud`` gets 32 bytes a point: x, y, z (float32,
- * optical frame, NAN outside the cutoffs), 4 bytes of padding, b, g, r, 0, and 12 of padding. Returns the number
- * of NAN points. */
+ * optical frame, NAN outside the cutoffs), 4 bytes of padding, b, g, r, 0, and 12 of padding; the padding bytes
+ * are left as they are (zeros: the caller's buffer is zeroed once and reused). Returns the number of NAN points. */
 long tso_cloud(int width, int height, const float* depth, const uint8_t* rgb, double focal, double cx, double cy,
                double cutoff, double cutoffMax, float* depthOut, uint8_t* cloud)
 {
   long missing = 0;
-  memset(cloud, 0, (size_t)width * (size_t)height * 32);
   for (int j = 0; j < height; ++j)
   {
     double y = (j - cy) / focal;

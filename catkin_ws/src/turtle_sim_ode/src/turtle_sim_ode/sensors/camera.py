@@ -91,7 +91,7 @@ class CameraSensor:
         light = -np.asarray(sun_direction, dtype=float)
         self._light = light / np.linalg.norm(light)
         lib = ray_kernel_library() if ray_kernel else None
-        self._caster = RayCaster(lib, self._optical_dirs) if lib is not None else None
+        self._caster = RayCaster(lib, width, height) if lib is not None else None
 
     @property
     def uses_ray_kernel(self) -> bool:
@@ -137,7 +137,13 @@ class CameraSensor:
         origin, rotation = self.optical_pose()
         if self._caster is not None:
             ground = self.physics.ground
-            geoms = [ground] + list(world_geoms(self.physics, self.model))
+            # Near to far, the ground last: a farther surface then fails the depth test before it is shaded.
+            ox, oy, oz = origin
+            near_first = sorted(
+                world_geoms(self.physics, self.model),
+                key=lambda g: sum((a - b) ** 2 for a, b in zip(g.getPosition(), (ox, oy, oz))),
+            )
+            geoms = near_first + [ground]
             _, depth, rgb = self._caster.render(
                 geoms,
                 {**colours, ground: GROUND_COLOR},

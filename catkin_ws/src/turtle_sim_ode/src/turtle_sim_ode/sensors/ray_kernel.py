@@ -26,7 +26,7 @@ def library() -> Optional[ctypes.CDLL]:
         return None
     double_p, float_p, byte_p = (ctypes.POINTER(t) for t in (ctypes.c_double, ctypes.c_float, ctypes.c_uint8))
     lib.tso_render.restype = ctypes.c_long
-    lib.tso_render.argtypes = [ctypes.c_int, ctypes.c_int, double_p, double_p, double_p, ctypes.c_int, double_p]
+    lib.tso_render.argtypes = [ctypes.c_int, ctypes.c_int, double_p, double_p, ctypes.c_int, double_p]
     lib.tso_render.argtypes += [ctypes.c_double] * 5 + [double_p, ctypes.c_double, double_p, double_p, float_p]
     lib.tso_render.argtypes += [byte_p]
     lib.tso_cloud.restype = ctypes.c_long
@@ -65,18 +65,17 @@ def _pointer(array: np.ndarray, kind: type) -> ctypes._Pointer:
 
 
 class RayCaster:
-    """Calls tso_render for one camera's image size; ``render`` fills and returns (distance, depth, rgb)."""
+    """Calls tso_render for one camera's image size; ``render`` fills and returns (depth as float64, INFINITY where
+    nothing is hit; depth as float32, NaN there; rgb): rays through the pixel centres of a pinhole (focal, cx, cy)."""
 
-    def __init__(self, lib: ctypes.CDLL, dirs: np.ndarray) -> None:
+    def __init__(self, lib: ctypes.CDLL, width: int, height: int) -> None:
         self._lib = lib
-        self._dirs = np.ascontiguousarray(dirs, dtype=np.float64)
-        height, width = dirs.shape[:2]
         self.size = (width, height)
         self.tests = 0  # ray tests made by the last render
         # Scratch and cloud buffers, reused frame after frame (fresh megabytes cost page faults every frame).
         self._distance = np.empty((height, width))
         self._depth_out = np.empty((height, width), dtype=np.float32)
-        self._cloud = np.empty((height, width, 32), dtype=np.uint8)
+        self._cloud = np.zeros((height, width, 32), dtype=np.uint8)  # tso_cloud leaves the padding as it is
 
     def render(
         self,
@@ -106,7 +105,6 @@ class RayCaster:
         self.tests = self._lib.tso_render(
             width,
             height,
-            _pointer(self._dirs, double),
             _pointer(origin, double),
             _pointer(rotation, double),
             len(rows),
