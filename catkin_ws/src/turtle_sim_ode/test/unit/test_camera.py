@@ -9,11 +9,11 @@ import pytest
 from conftest import PACKAGE_ROOT
 
 from turtle_sim_ode.models.builder import quat_from_rpy
-from turtle_sim_ode.models.sdf import parse_sdf_model
+from turtle_sim_ode.models.sdf import parse_sdf_model, parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.sensors.camera import CameraSensor, scene_colours
-from turtle_sim_ode.sensors.config import read_sensors
+from turtle_sim_ode.sensors.config import read_sdf_sensors, read_sensors
 from turtle_sim_ode.sensors.raycast import hit_capsule, hit_cylinder, hit_sphere
 from turtle_sim_ode.world.simulation import Simulation
 
@@ -225,9 +225,55 @@ def test_the_c_and_numpy_ray_casters_draw_the_same_image() -> None:
     assert np.abs(fast.rgb.astype(int) - slow.rgb.astype(int)).max() <= 1
     fast_depth, fast_cloud, fast_dense = camera.organised_cloud(fast)
     slow_depth, slow_cloud, slow_dense = numpy_camera.organised_cloud(fast)
-    assert np.array_equal(fast_depth, slow_depth, equal_nan=True) and fast_dense == slow_dense
+    np.testing.assert_array_equal(fast_depth, slow_depth)  # NaN where NaN (numpy 1.17 has no equal_nan)
+    assert fast_dense == slow_dense
     fast_xyz = fast_cloud.view(np.float32)[:, :, :3]
-    assert np.array_equal(fast_xyz, slow_cloud.view(np.float32)[:, :, :3], equal_nan=True)
+    np.testing.assert_array_equal(fast_xyz, slow_cloud.view(np.float32)[:, :, :3])
     assert np.array_equal(fast_cloud[:, :, 12:], slow_cloud[:, :, 12:])
     drawn = {tuple(pixel) for pixel in fast.rgb.reshape(-1, 3)}
     assert len(drawn) > 8  # shapes, faces and shading, not one flat colour
+
+
+def test_an_sdf_link_sensor_is_a_camera_in_the_link_frame() -> None:
+    sdf = RED_BOX.replace(
+        "</link>",
+        """<sensor type="camera" name="front"><pose>0.3 0 0.1 0 0 0</pose><update_rate>5</update_rate>
+        <camera><horizontal_fov>0.9</horizontal_fov><image><width>64</width><height>48</height>
+        <format>L8</format></image></camera>
+        <plugin name="p" filename="libgazebo_ros_camera.so"><cameraName>front_cam</cameraName></plugin>
+        </sensor></link>""",
+    )
+    config = read_sdf_sensors(sdf).cameras[0]
+    assert (config.link, config.pose[:3], config.update_rate, config.encoding) == (
+        "link",
+        (0.3, 0.0, 0.1),
+        5.0,
+        "mono8",
+    )
+    assert (config.camera_name, config.frame, config.depth) == ("front_cam", "", False)
+
+
+def test_the_worlds_sun_and_sky_light_the_picture() -> None:
+    world = parse_sdf_world(
+        """<sdf version="1.6"><world name="w"><include><uri>model://ground_plane</uri></include>
+        <light type="directional" name="sun"><direction>0 0 -1</direction></light>
+        <scene><background>0 0 1 1</background></scene></world></sdf>"""
+    )
+    sim = Simulation()
+    sim.load_world(world)
+    assert (sim.light_direction, sim.sky_colour) == ((0.0, 0.0, -1.0), (0.0, 0.0, 1.0))
+    urdf = CAMERA_URDF.format(kind="camera", plugin="libgazebo_ros_camera.so", fov=1.047, width=32, height=24, z=0.5)
+    sim.spawn_urdf("cam", urdf, (0, 0, 0.05, 0, 0, 0))
+    config = sim.plugins["cam"].cameras[0]
+    for kernel in (True, False):
+        camera = CameraSensor(
+            sim.physics,
+            sim.models["cam"],
+            config,
+            sun_direction=sim.light_direction,
+            sky=sim.sky_colour,
+            ray_kernel=kernel,
+        )
+        frame = camera.render(scene_colours(sim.models.values()))
+        assert tuple(frame.rgb[0, 16]) == (0, 0, 255)  # the sky
+        assert tuple(frame.rgb[23, 16]) == (179, 179, 179)  # Gazebo/Grey ground, the sun straight above: 0.7 lit fully

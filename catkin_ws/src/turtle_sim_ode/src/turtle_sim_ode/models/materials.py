@@ -40,7 +40,7 @@ GAZEBO_MATERIALS: Dict[str, RGB] = {
 DEFAULT_COLOR: RGB = (0.7, 0.7, 0.7)
 
 
-def _rgb(text: Optional[str]) -> Optional[RGB]:
+def rgb_of(text: Optional[str]) -> Optional[RGB]:
     """The first three of 3 or 4 numbers in 0..1 (clamped), or None for text that is not."""
     if text is None:
         return None
@@ -62,7 +62,7 @@ def urdf_named_materials(robot: Element) -> Dict[str, RGB]:
     """The robot-level ``<material name><color rgba>`` definitions of a URDF."""
     found: Dict[str, RGB] = {}
     for material in robot.findall("material"):
-        color = _rgb(material.find("color").get("rgba") if material.find("color") is not None else None)
+        color = rgb_of(material.find("color").get("rgba") if material.find("color") is not None else None)
         if material.get("name") and color is not None:
             found[material.get("name", "")] = color
     return found
@@ -75,7 +75,7 @@ def urdf_link_color(link: Element, named: Dict[str, RGB]) -> Optional[RGB]:
         if material is None:
             continue
         color_element = material.find("color")
-        color = _rgb(color_element.get("rgba")) if color_element is not None else None
+        color = rgb_of(color_element.get("rgba")) if color_element is not None else None
         if color is None:
             color = named.get(material.get("name", ""))
         if color is not None:
@@ -90,7 +90,7 @@ def sdf_link_color(link: Element) -> Optional[RGB]:
         if material is None:
             continue
         for tag in ("diffuse", "ambient"):
-            color = _rgb(material.findtext(tag))
+            color = rgb_of(material.findtext(tag))
             if color is not None:
                 return color
         color = gazebo_material(material.findtext("script/name"))

@@ -504,6 +504,6 @@ def model_interfaces(
         for config in plugins.contacts:
             interfaces.append(ContactsPublisher(sim, model, config, namespace))
         for config in plugins.cameras:
-            sensor = CameraSensor(sim.physics, model, config)
+            sensor = CameraSensor(sim.physics, model, config, sun_direction=sim.light_direction, sky=sim.sky_colour)
             interfaces.append(CameraPublisher(sensor, lambda: scene_colours(sim.models.values()), namespace))
     return interfaces

@@ -65,10 +65,12 @@ class CameraSensor:
         model: BuiltModel,
         config: CameraConfig,
         rng: Optional[random.Random] = None,
-        sun_direction: Tuple[float, float, float] = SUN_DIRECTION,
+        sun_direction: Optional[Tuple[float, float, float]] = None,
         ray_kernel: bool = True,
+        sky: Optional[RGB] = None,
     ) -> None:
-        """``ray_kernel``: cast the rays in C (src/ray_kernel.c) when the library is built, else with numpy."""
+        """``sun_direction`` (the world's directional light) and ``sky`` default to Gazebo's; ``ray_kernel``: cast
+        the rays in C (src/ray_kernel.c) when the library is built, else with numpy."""
         model.link_transform(config.link)  # KeyError now for a missing link
         self.physics = physics
         self.model = model
@@ -88,7 +90,8 @@ class CameraSensor:
         self._optical_dirs = optical / norm[:, :, None]  # unit ray directions, optical frame
         self._depth_per_distance = 1.0 / norm  # optical z of a hit per metre along its ray
         self._u, self._v = u, v
-        light = -np.asarray(sun_direction, dtype=float)
+        self._sky = sky if sky is not None else SKY_COLOR
+        light = -np.asarray(sun_direction if sun_direction is not None else SUN_DIRECTION, dtype=float)
         self._light = light / np.linalg.norm(light)
         lib = ray_kernel_library() if ray_kernel else None
         self._caster = RayCaster(lib, width, height) if lib is not None else None
@@ -155,7 +158,7 @@ class CameraSensor:
                 (self.focal_length, self.cx, self.cy),
                 self._light,
                 AMBIENT,
-                SKY_COLOR,
+                self._sky,
             )
             if config.noise_stddev > 0 or config.noise_mean != 0:
                 noisy = rgb / 255.0 + self._rng.normal(config.noise_mean, config.noise_stddev, rgb.shape)
@@ -165,7 +168,7 @@ class CameraSensor:
         dirs = self._optical_dirs @ rotation.T  # world directions (H, W, 3)
         distance = np.full((height, width), np.inf)
         shade = np.empty((height, width, 3))
-        shade[:, :] = SKY_COLOR
+        shade[:, :] = self._sky
         t_min = config.near
 
         def paint(t: np.ndarray, normals: np.ndarray, colour: RGB, box: Tuple[int, int, int, int]) -> None:
@@ -196,7 +199,7 @@ class CameraSensor:
             paint(t, normals, colours.get(geom, DEFAULT_COLOR), box)
         depth = distance * self._depth_per_distance
         missed = ~(depth <= config.far)
-        shade[missed] = SKY_COLOR
+        shade[missed] = self._sky
         depth[missed] = np.nan
         if config.noise_stddev > 0 or config.noise_mean != 0:
             shade += self._rng.normal(config.noise_mean, config.noise_stddev, shade.shape)
