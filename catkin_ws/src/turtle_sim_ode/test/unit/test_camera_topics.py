@@ -2,6 +2,7 @@
 back with genpy; nothing is rendered while no one subscribes to an image, depth image or cloud."""
 from __future__ import annotations
 
+import dataclasses
 import io
 import math
 import struct
@@ -117,3 +118,16 @@ def test_the_spliced_data_is_byte_for_byte_what_genpy_writes(publisher) -> None:
         buffer = io.BytesIO()
         message.serialize(buffer)
         assert packed == buffer.getvalue(), key
+
+
+def test_a_plain_camera_has_image_and_info_only_in_its_format(monkeypatch) -> None:
+    FakePublisher.made = {}
+    monkeypatch.setattr(camera_topics, "PackedPublisher", FakePublisher)
+    sim, camera = camera_world(kind="camera", plugin="libgazebo_ros_camera.so", width=40, height=30)
+    camera.config = dataclasses.replace(camera.config, image_format="L8")
+    camera_publisher = camera_topics.CameraPublisher(camera, lambda: scene_colours(sim.models.values()), "")
+    assert set(FakePublisher.made) == {"cam/image_raw", "cam/camera_info"}
+    FakePublisher.made["cam/image_raw"].connections = 1
+    camera_publisher.publish(rospy.Time(1, 0), 1.0)
+    image: Image = FakePublisher.made["cam/image_raw"].messages[0]
+    assert (image.encoding, image.step, len(image.data), camera_publisher.rendered) == ("mono8", 40, 1200, 1)

@@ -82,19 +82,20 @@ class CameraSensor:
         self.cx, self.cy = (width - 1) / 2.0, (height - 1) / 2.0
         u = (np.arange(width) - self.cx) / self.focal_length  # x / z of each column
         v = (np.arange(height) - self.cy) / self.focal_length  # y / z of each row
-        optical = np.empty((height, width, 3))
-        optical[:, :, 0] = u[None, :]
-        optical[:, :, 1] = v[:, None]
-        optical[:, :, 2] = 1.0
-        norm = np.linalg.norm(optical, axis=2)
-        self._optical_dirs = optical / norm[:, :, None]  # unit ray directions, optical frame
-        self._depth_per_distance = 1.0 / norm  # optical z of a hit per metre along its ray
         self._u, self._v = u, v
         self._sky = sky if sky is not None else SKY_COLOR
         light = -np.asarray(sun_direction if sun_direction is not None else SUN_DIRECTION, dtype=float)
         self._light = light / np.linalg.norm(light)
         lib = ray_kernel_library() if ray_kernel else None
         self._caster = RayCaster(lib, width, height) if lib is not None else None
+        if self._caster is None:  # the numpy rays' directions (tens of MB for a full-HD camera: only if used)
+            optical = np.empty((height, width, 3))
+            optical[:, :, 0] = u[None, :]
+            optical[:, :, 1] = v[:, None]
+            optical[:, :, 2] = 1.0
+            norm = np.linalg.norm(optical, axis=2)
+            self._optical_dirs = optical / norm[:, :, None]  # unit ray directions, optical frame
+            self._depth_per_distance = 1.0 / norm  # optical z of a hit per metre along its ray
 
     @property
     def uses_ray_kernel(self) -> bool:
