@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""rostest node: start Xvfb and rviz on the shipped config, take screenshots until the robot's blue shell shows
-in the middle of the 3D view (or time runs out), and keep the last screenshot as a PNG for people to look at."""
+"""rostest node: start Xvfb and rviz on the shipped config, take screenshots until enough pixels of ``~colour``
+show in the middle of the 3D view (or time runs out), and keep the last screenshot as a PNG (``~screenshot``, in
+the temp directory) for people to look at. Blue: the TurtleBot's shell (rviz.test); red: the point cloud of a red
+box (rviz_camera.test)."""
 import os
 import subprocess
 import sys
@@ -23,8 +25,9 @@ from workspace_testing.screen import start_xvfb
 RVIZ_BACKGROUND = (48, 48, 48)
 
 
-def robot_pixels(image):
-    """Blue-shell pixels inside the central half of the 3D view (the region of rviz's background colour)."""
+def robot_pixels(image, colour="blue"):
+    """Pixels of ``colour`` (blue or red) inside the central half of the 3D view (the region of rviz's background
+    colour)."""
     view = np.all(np.abs(image.astype(int) - RVIZ_BACKGROUND) <= 2, axis=2)
     ys, xs = np.nonzero(view)
     if len(xs) == 0:
@@ -33,6 +36,8 @@ def robot_pixels(image):
     cx0, cx1 = x0 + (x1 - x0) // 4, x1 - (x1 - x0) // 4
     cy0, cy1 = y0 + (y1 - y0) // 4, y1 - (y1 - y0) // 4
     r, g, b = [image[cy0:cy1, cx0:cx1, i].astype(int) for i in range(3)]
+    if colour == "red":
+        return int(np.count_nonzero((r > g + 60) & (r > b + 60)))
     return int(np.count_nonzero((b > r + 60) & (b > g + 20)))
 
 
@@ -54,7 +59,8 @@ class RvizShowsRobot(unittest.TestCase):
                 stderr=subprocess.STDOUT,
                 start_new_session=True,
             )
-        shot_path = os.path.join(tempfile.gettempdir(), "turtle_sim_ode_rviz.png")
+        shot_path = os.path.join(tempfile.gettempdir(), rospy.get_param("~screenshot", "turtle_sim_ode_rviz.png"))
+        colour = rospy.get_param("~colour", "blue")
         try:
             deadline = time.monotonic() + rospy.get_param("~timeout")
             pixels, image, grab_error = 0, None, ""
@@ -68,7 +74,7 @@ class RvizShowsRobot(unittest.TestCase):
                 )
                 if grab.returncode == 0:
                     image = read_xwd(grab.stdout)
-                    pixels = robot_pixels(image)
+                    pixels = robot_pixels(image, colour)
                 else:
                     # A grab can fail while rviz (re)creates its GL window: the next try decides.
                     grab_error = grab.stderr.decode(errors="replace").strip()
@@ -81,8 +87,8 @@ class RvizShowsRobot(unittest.TestCase):
             self.assertGreaterEqual(
                 pixels,
                 rospy.get_param("~min_robot_pixels"),
-                "the robot did not show in rviz; last screenshot: %s; rviz output:\n%s"
-                % (shot_path, tail(rviz_log_path)),
+                "too few %s pixels in rviz; last screenshot: %s; rviz output:\n%s"
+                % (colour, shot_path, tail(rviz_log_path)),
             )
         finally:
             stop(rviz)

@@ -14,15 +14,16 @@ from typing import TYPE_CHECKING, Dict, List, Optional, Set, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
-from turtle_sim_ode.physics import sanity
+from turtle_sim_ode.models.materials import RGB, rgb_of, sdf_link_color
 from turtle_sim_ode.models.text import (
     ModelError,
     child_text,
     parse_xml,
-    required_attribute,
     read_number,
     read_optional_number,
+    required_attribute,
 )
+from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
     MESH_PLACEHOLDER_EDGE,
@@ -155,6 +156,9 @@ class World:
     # model://ground_plane (or an inline "ground_plane" model): the physics ground at z=0.
     ground_plane: bool = False
     sun: bool = False
+    # For the cameras: the first directional <light>'s <direction>, and <scene><background>; None: Gazebo's defaults.
+    light_direction: Optional[Vec3] = None
+    background: Optional[RGB] = None
     warnings: List[str] = field(default_factory=list)
 
 
@@ -336,6 +340,7 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
         if not static and _bool(element, flag, what, normal) != normal:
             model.warnings.append(f"{what}: <{flag}> is not supported, ignored")
     link = Link(name, None if static else _parse_inertial(element.find("inertial"), name, model.warnings))
+    link.color = sdf_link_color(element)
     surface: Dict[str, float] = {}
     for index, collision in enumerate(element.findall("collision")):
         collision_name = collision.get("name") or f"{name}_collision_{index}"
@@ -561,6 +566,15 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
     )
 
 
+def _vec3_text(text: Optional[str], what: str) -> Optional[Vec3]:
+    if text is None:
+        return None
+    values = [read_number(value, what) for value in text.split()]
+    if len(values) != 3:
+        raise ModelError(f"{what} must be 3 numbers, got '{text}'")
+    return (values[0], values[1], values[2])
+
+
 def parse_sdf_world(text: str) -> World:
     """Parse ``<sdf version><world>``: physics, inline models, includes (not opened), plugins."""
     root = parse_xml(text, "SDF")
@@ -609,6 +623,11 @@ def parse_sdf_world(text: str) -> World:
                 )
         elif child.tag == "plugin":
             world.plugins.append(_plugin(child, "<world>"))
+        elif child.tag == "light" and child.get("type") == "directional" and world.light_direction is None:
+            direction = _vec3_text(child_text(child, "direction"), "<light> <direction>")
+            world.light_direction = direction if direction is not None and any(direction) else None
+        elif child.tag == "scene":
+            world.background = rgb_of(child_text(child, "background")) or world.background
         elif child.tag not in SILENT_WORLD_TAGS + ("physics", "gravity"):
             warnings.append(f"<world> <{child.tag}> is not supported, ignored")
     if not world.ground_plane:

@@ -5,9 +5,10 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple, Union
 from xml.etree.ElementTree import Element
 
+from turtle_sim_ode.models.materials import RGB, gazebo_material, urdf_link_color, urdf_named_materials
+from turtle_sim_ode.models.text import ModelError, parse_xml, read_number, required_attribute
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.sanity import MAX_INERTIA, MAX_LENGTH, MAX_MASS, MIN_MASS
-from turtle_sim_ode.models.text import ModelError, parse_xml, read_number, required_attribute
 
 Vec3 = Tuple[float, float, float]
 
@@ -81,6 +82,7 @@ class Link:
     name: str
     inertial: Optional[Inertial] = None
     collisions: List[Collision] = field(default_factory=list)
+    color: Optional[RGB] = None  # from its visual's material (None: Gazebo's default grey), for the cameras
 
 
 @dataclass(frozen=True)
@@ -275,10 +277,11 @@ def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) 
     raise ModelError(f"{what}: unsupported geometry <{shape.tag}>")
 
 
-def _parse_link(element: Element, warnings: List[str]) -> Link:
+def _parse_link(element: Element, warnings: List[str], materials: Dict[str, RGB]) -> Link:
     name = required_attribute(element, "name", "<link>")
     inertial = element.find("inertial")
     link = Link(name, _parse_inertial(inertial, name) if inertial is not None else None)
+    link.color = urdf_link_color(element, materials)
     for index, collision in enumerate(element.findall("collision")):
         what = f"link '{name}' collision {collision.get('name') or index}"
         link.collisions.append(
@@ -357,6 +360,9 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
                 )
             )
         return
+    color = gazebo_material(element.findtext("material"))
+    if color is not None and reference in model.links:
+        model.links[reference].color = color  # Gazebo shows its material over the URDF's colour
     values = {}
     for child in element:
         if child.tag in SURFACE_TAGS:
@@ -429,8 +435,9 @@ def parse_urdf(text: str) -> RobotModel:
     check_size("model", link_elements, joint_elements)
     warnings: List[str] = []
     links: Dict[str, Link] = {}
+    materials = urdf_named_materials(robot)
     for element in link_elements:
-        link = _parse_link(element, warnings)
+        link = _parse_link(element, warnings, materials)
         if link.name in links:
             raise ModelError(f"duplicate link name '{link.name}'")
         links[link.name] = link

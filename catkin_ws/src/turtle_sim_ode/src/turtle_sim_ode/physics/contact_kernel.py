@@ -47,11 +47,11 @@ _WATCHED_LAYOUT = struct.Struct("@PP7d")
 assert _WATCHED_LAYOUT.size == ctypes.sizeof(_WatchedContact)
 
 
-def _find_library() -> Optional[ctypes.CDLL]:
-    """The kernel from the loader's path (catkin's setup puts devel/lib and install/lib on LD_LIBRARY_PATH), else
-    from each CMAKE_PREFIX_PATH entry's lib/."""
-    candidates = [LIBRARY] + [
-        os.path.join(prefix, "lib", LIBRARY) for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":") if prefix
+def find_library(name: str = LIBRARY) -> Optional[ctypes.CDLL]:
+    """A library of the package (the kernel by default) from the loader's path (catkin's setup puts devel/lib and
+    install/lib on LD_LIBRARY_PATH), else from each CMAKE_PREFIX_PATH entry's lib/."""
+    candidates = [name] + [
+        os.path.join(prefix, "lib", name) for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":") if prefix
     ]
     for candidate in candidates:
         try:
@@ -88,7 +88,7 @@ def _declare(lib: ctypes.CDLL) -> ctypes.CDLL:
 @functools.lru_cache(maxsize=None)
 def library() -> Optional[ctypes.CDLL]:
     """The loaded kernel library, or None if it is not built (searched once)."""
-    found = _find_library()
+    found = find_library()
     if found is None:
         return None
     try:

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 import random
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import ode
 import rospy
@@ -19,6 +19,17 @@ from turtle_sim_ode_msgs.msg import BumperEvent, CliffEvent
 
 from turtle_sim_ode.models.builder import BuiltModel, quat_from_rpy, quat_multiply
 from turtle_sim_ode.physics.world import PhysicsWorld
+from turtle_sim_ode.ros.camera_topics import CameraPublisher
+from turtle_sim_ode.ros.periodic import (
+    Advertising,
+    Periodic,
+    TopicCheck,
+    packed_publisher,
+    plugin_topic,
+    publisher,
+    subscriber,
+    topic_prefix,
+)
 from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import (
     ImuPacker,
@@ -29,8 +40,8 @@ from turtle_sim_ode.ros.wire import (
     Quat,
     TransformPacker,
     release,
-    stamp_parts,
 )
+from turtle_sim_ode.sensors.camera import CameraSensor, scene_colours
 from turtle_sim_ode.sensors.config import ContactConfig, ImuConfig
 from turtle_sim_ode.sensors.imu import ImuSensor
 from turtle_sim_ode.sensors.kobuki import BumperSensor, CliffSensor
@@ -80,48 +91,11 @@ ODOM_POSE_COVARIANCE = [
 ]
 ODOM_TWIST_COVARIANCE = ODOM_POSE_COVARIANCE
 Vec3 = Tuple[float, float, float]
-# Called with each topic name and message class before a model's plugin advertises or subscribes to it; raises
-# (WorldError) to refuse the model.
-TopicCheck = Callable[[str, type], None]
-
-
-class _Advertising:
-    """The topics one model_interfaces call opens: each checked first, all released if the call fails."""
-
-    check: Optional[TopicCheck] = None
-    opened: List[Any] = []
-
-
-def _opened(handle: Any) -> Any:
-    _Advertising.opened.append(handle)
-    return handle
-
-
-def _packed(topic: str, msg_type: type) -> PackedPublisher:
-    if _Advertising.check is not None:
-        _Advertising.check(topic, msg_type)
-    return _opened(PackedPublisher(topic, msg_type))
-
-
-def _publisher(topic: str, msg_type: type, queue_size: int) -> rospy.Publisher:
-    if _Advertising.check is not None:
-        _Advertising.check(topic, msg_type)
-    return _opened(rospy.Publisher(topic, msg_type, queue_size=queue_size))
-
-
-def _subscriber(topic: str, msg_type: type, callback: Callable[[Any], None], queue_size: int) -> rospy.Subscriber:
-    if _Advertising.check is not None:
-        _Advertising.check(topic, msg_type)
-    return _opened(rospy.Subscriber(topic, msg_type, callback, queue_size=queue_size))
 
 
 def period(rate: float) -> float:
     """Seconds of sim time between messages at ``rate`` Hz; rate 0 means every step, as in Gazebo."""
     return 1.0 / rate if rate > 0 else 0.0
-
-
-def sim_stamp(seconds: float) -> rospy.Time:
-    return rospy.Time(*stamp_parts(seconds))
 
 
 def rotate_inverse(q: Sequence[float], v: Sequence[float]) -> Vec3:
@@ -130,45 +104,6 @@ def rotate_inverse(q: Sequence[float], v: Sequence[float]) -> Vec3:
     vx, vy, vz = v
     tx, ty, tz = 2 * (y * vz - z * vy), 2 * (z * vx - x * vz), 2 * (x * vy - y * vx)
     return (vx + w * tx + y * tz - z * ty, vy + w * ty + z * tx - x * tz, vz + w * tz + x * ty - y * tx)
-
-
-def topic_prefix(namespace: str) -> str:
-    """A model's robot namespace prefixes its plugin topics, as gazebo_ros plugins do."""
-    namespace = namespace.strip("/")
-    return namespace + "/" if namespace else ""
-
-
-def plugin_topic(namespace: str, topic: str) -> str:
-    """A plugin's topic in the model's namespace; an absolute topic name stays as it is."""
-    return topic if topic.startswith("/") else topic_prefix(namespace) + topic
-
-
-class Periodic:
-    """A publisher with its own rate in sim time."""
-
-    def __init__(self, period: float) -> None:
-        self._period = period
-        self._next = 0.0
-
-    @property
-    def next_due(self) -> float:
-        """Sim time from which ``publish_due`` publishes (less 1e-9 s of rounding)."""
-        return self._next
-
-    def restart(self, now: float) -> None:
-        self._next = now
-
-    def publish_due(self, now: float, stamp: rospy.Time) -> None:
-        """Publish if due at sim time ``now``; ``stamp`` is ``sim_stamp(now)``, made once for all that fall due."""
-        if now >= self._next - 1e-9:
-            self._next = max(self._next + self._period, now)
-            self.publish(stamp, now)
-
-    def publish(self, stamp: rospy.Time, now: float) -> None:
-        raise NotImplementedError
-
-    def close(self) -> None:
-        raise NotImplementedError
 
 
 class DriveInterface(Periodic):
@@ -197,17 +132,17 @@ class DriveInterface(Periodic):
         self._world_odometry = config.odometry_source == "world"
         self._reset_requested = False
         prefix = topic_prefix(namespace or config.robot_namespace)
-        self._handles: List = [_subscriber(prefix + config.command_topic, Twist, self._on_velocity, 1)]
+        self._handles: List = [subscriber(prefix + config.command_topic, Twist, self._on_velocity, 1)]
         if config.reset_topic:
-            self._handles.append(_subscriber(prefix + config.reset_topic, EmptyMsg, self._on_reset, 1))
-        self._odom_pub = _packed(prefix + config.odometry_topic, Odometry)
+            self._handles.append(subscriber(prefix + config.reset_topic, EmptyMsg, self._on_reset, 1))
+        self._odom_pub = packed_publisher(prefix + config.odometry_topic, Odometry)
         # gazebo_ros_diff_drive's world odometry comes without covariances.
         covariances = () if self._world_odometry else (ODOM_POSE_COVARIANCE, ODOM_TWIST_COVARIANCE)
         self._odom_packer = OdometryPacker(self._odom_frame, self._base_frame, *covariances)
         self._tf_packer = TransformPacker(self._odom_frame, self._base_frame)
         self._joint_pub: Optional[PackedPublisher] = None
         if config.publish_joint_states:
-            self._joint_pub = _packed(prefix + "joint_states", JointState)
+            self._joint_pub = packed_publisher(prefix + "joint_states", JointState)
         self._handles += [p for p in (self._odom_pub, self._joint_pub) if p is not None]
         self._joint_packer = JointStatePacker([robot.left.name, robot.right.name])
 
@@ -295,7 +230,7 @@ class GroundTruthPublisher(Periodic):
         self._offset = xyz_offset
         w, x, y, z = quat_from_rpy(*rpy_offset)
         self._rotation_offset = (w, x, y, z)
-        self._pub = _packed(topic, Odometry)
+        self._pub = packed_publisher(topic, Odometry)
         self._packer = OdometryPacker(frame, link)
 
     @classmethod
@@ -343,7 +278,7 @@ class JointStatePublisher(Periodic):
         super().__init__(period(config.update_rate))
         self._handles = [model.joint(name) for name in config.joints]
         self._packer = JointStatePacker(list(config.joints))
-        self._pub = _packed(topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState)
+        self._pub = packed_publisher(topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         if not self._pub.get_num_connections():
@@ -364,7 +299,7 @@ class LaserPublisher(Periodic):
         config = scanner.config
         super().__init__(period(config.update_rate))  # 0: every step, as Gazebo's sensors
         self._scanner = scanner
-        self._pub = _packed(plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan)
+        self._pub = packed_publisher(plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan)
         self._packer = LaserScanPacker(
             scanner.frame,
             angle_min=config.min_angle,
@@ -392,7 +327,7 @@ class ImuPublisher(Periodic):
     def __init__(self, sensor: ImuSensor, topic: str, frame: str, rate: float) -> None:
         super().__init__(period(rate))  # rate 0: every step, as gazebo_plugins has it
         self._sensor = sensor
-        self._pub = _packed(topic, Imu)
+        self._pub = packed_publisher(topic, Imu)
         self._packer = ImuPacker(frame)
 
     def restart(self, now: float) -> None:
@@ -423,7 +358,7 @@ class BumperEventPublisher(Periodic):
     def __init__(self, sensor: BumperSensor, topic: str, rate: float) -> None:
         super().__init__(period(rate))
         self._sensor = sensor
-        self._pub = _publisher(topic, BumperEvent, 10)
+        self._pub = publisher(topic, BumperEvent, 10)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         for bumper, state in self._sensor.changes():  # every time, even unheard: events are changes
@@ -441,7 +376,7 @@ class CliffEventPublisher(Periodic):
     def __init__(self, sensor: CliffSensor, topic: str, rate: float) -> None:
         super().__init__(period(rate))
         self._sensor = sensor
-        self._pub = _publisher(topic, CliffEvent, 10)
+        self._pub = publisher(topic, CliffEvent, 10)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         for sensor, state, distance in self._sensor.changes():
@@ -461,7 +396,7 @@ class ContactsPublisher(Periodic):
 
     def __init__(self, sim: Simulation, model: BuiltModel, config: ContactConfig, namespace: str) -> None:
         super().__init__(period(config.update_rate))
-        self._pub = _publisher(plugin_topic(namespace or config.robot_namespace, config.topic), ContactsState, 1)
+        self._pub = publisher(plugin_topic(namespace or config.robot_namespace, config.topic), ContactsState, 1)
         self._sim = sim
         self._physics: PhysicsWorld = sim.physics
         self._watch = self._physics.watch_contacts(model.geoms.get(config.link, []))
@@ -505,7 +440,7 @@ class ContactsPublisher(Periodic):
         release(self._pub)
 
 
-def _imu_publisher(model: BuiltModel, config: ImuConfig, gravity: Vec3, namespace: str) -> Optional[Periodic]:
+def _imupublisher(model: BuiltModel, config: ImuConfig, gravity: Vec3, namespace: str) -> Optional[Periodic]:
     if config.link not in model.links:
         rospy.logwarn("model %s: IMU link [%s] does not exist: not published", model.name, config.link)
         return None
@@ -546,17 +481,17 @@ def model_interfaces(
     """Every ROS publisher and subscriber the plugins of model `name` ask for (call under the world lock), each
     topic first shown to ``check_topic``. All or nothing: if one fails, those opened so far are closed again."""
     interfaces: List[Periodic] = []
-    _Advertising.check, _Advertising.opened = check_topic, []
+    Advertising.check, Advertising.opened = check_topic, []
     try:
         _add_interfaces(name, sim, settings, tf_broadcaster, namespace, interfaces)
     except BaseException:
         for interface in interfaces:
             interface.close()
-        for handle in _Advertising.opened:  # those of an interface that failed half-way
+        for handle in Advertising.opened:  # those of an interface that failed half-way
             release(handle)
         raise
     finally:
-        _Advertising.check, _Advertising.opened = None, []
+        Advertising.check, Advertising.opened = None, []
     return interfaces
 
 
@@ -606,8 +541,11 @@ def _add_interfaces(
             scanner = LaserScanner(sim.physics, model, config.link, config)
             interfaces.append(LaserPublisher(scanner, namespace, sim.physics.time_step))
         for config in plugins.imus:
-            publisher = _imu_publisher(model, config, tuple(sim.physics.params.gravity), namespace)
+            publisher = _imupublisher(model, config, tuple(sim.physics.params.gravity), namespace)
             if publisher is not None:
                 interfaces.append(publisher)
         for config in plugins.contacts:
             interfaces.append(ContactsPublisher(sim, model, config, namespace))
+        for config in plugins.cameras:
+            sensor = CameraSensor(sim.physics, model, config, sun_direction=sim.light_direction, sky=sim.sky_colour)
+            interfaces.append(CameraPublisher(sensor, lambda: scene_colours(sim.models.values()), namespace))

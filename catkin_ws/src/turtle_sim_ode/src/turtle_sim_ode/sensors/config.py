@@ -16,6 +16,14 @@ LASER_PLUGINS = ("libgazebo_ros_laser.so", "libgazebo_ros_ray_sensor.so")
 # sensor plugin.
 IMU_PLUGINS = ("libgazebo_ros_imu.so", "libgazebo_ros_imu_sensor.so")
 BUMPER_PLUGIN = "libgazebo_ros_bumper.so"
+CAMERA_PLUGINS = ("libgazebo_ros_camera.so",)
+DEPTH_PLUGINS = ("libgazebo_ros_openni_kinect.so", "libgazebo_ros_depth_camera.so")
+SIMULATED_TYPES = ("ray", "gpu_ray", "imu", "contact", "camera", "depth")
+# <image><format> -> sensor_msgs encoding (gazebo_ros_camera_utils' names); the others fall back to rgb8.
+IMAGE_ENCODINGS = {"R8G8B8": "rgb8", "RGB_INT8": "rgb8", "B8G8R8": "bgr8", "BGR_INT8": "bgr8", "L8": "mono8"}
+IMAGE_ENCODINGS["L_INT8"] = "mono8"
+# A camera whose <sensor><update_rate> and plugin <updateRate> are both 0 (Gazebo: as fast as it renders).
+DEFAULT_CAMERA_RATE = 30.0
 
 
 # --- configuration -----------------------------------------------------------------------
@@ -148,13 +156,56 @@ class ContactConfig:
     robot_namespace: str = ""
 
 
+@dataclass(frozen=True)
+class CameraConfig:
+    """A ``<sensor type="camera">`` with libgazebo_ros_camera.so, or a ``<sensor type="depth">`` with
+    libgazebo_ros_openni_kinect.so / libgazebo_ros_depth_camera.so (``depth`` true): gazebo_plugins' tags and
+    defaults. Topics are relative to ``robot_namespace``/``camera_name``, as gazebo_ros_camera_utils has them."""
+
+    link: str
+    name: str = "camera"
+    depth: bool = False
+    horizontal_fov: float = 1.047  # rad, SDF's default
+    width: int = 320
+    height: int = 240
+    image_format: str = "R8G8B8"
+    near: float = 0.1
+    far: float = 100.0
+    noise_mean: float = 0.0  # gaussian noise on the colour values (0..1), SDF <camera><noise>
+    noise_stddev: float = 0.0
+    update_rate: float = DEFAULT_CAMERA_RATE  # Hz of sim time
+    camera_name: str = ""
+    image_topic: str = "image_raw"
+    info_topic: str = "camera_info"
+    depth_topic: str = "depth/image_raw"
+    depth_info_topic: str = "depth/camera_info"
+    points_topic: str = "points"
+    frame: str = ""  # "" = the link
+    cutoff: float = 0.4  # depth and points only within (cutoff, cutoff_max), NaN elsewhere
+    cutoff_max: float = 5.0
+    pose: Tuple[float, float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    robot_namespace: str = ""
+
+    @property
+    def encoding(self) -> str:
+        return IMAGE_ENCODINGS.get(self.image_format, "rgb8")
+
+    @property
+    def focal_length(self) -> float:
+        """fx = fy (pixels) as gazebo_ros_camera_utils computes it: width / (2 tan(hfov / 2))."""
+        return self.width / (2.0 * math.tan(self.horizontal_fov / 2.0))
+
+
 @dataclass
 class SensorBlocks:
-    """The sensors a URDF's ``<gazebo reference="link"><sensor>`` blocks define (with a ROS plugin)."""
+    """The sensors a URDF's ``<gazebo reference="link"><sensor>`` blocks define (with a ROS plugin), and warnings
+    naming those that are not simulated."""
 
     lasers: List[LaserConfig] = field(default_factory=list)
     imus: List[ImuConfig] = field(default_factory=list)
     contacts: List[ContactConfig] = field(default_factory=list)
+    cameras: List[CameraConfig] = field(default_factory=list)
+    warnings: List[str] = field(default_factory=list)
 
 
 def _rate(element: Optional[Element], tags: Sequence[str], default: float, what: str) -> float:
@@ -200,8 +251,92 @@ def _contact_config(link: str, sensor: Element, plugin: Element) -> ContactConfi
     )
 
 
+def _sensor_pose(sensor: Element, what: str) -> Tuple[float, float, float, float, float, float]:
+    pose_text = child_text(sensor, "pose")
+    if pose_text is None:
+        return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    try:
+        pose = tuple(float(v) for v in pose_text.split())
+    except ValueError:
+        pose = ()
+    if len(pose) != 6 or not all(math.isfinite(v) for v in pose):
+        raise ModelError(f"{what} <pose> must be 6 finite numbers, got '{pose_text}'")
+    return pose  # type: ignore[return-value]
+
+
+def _int(element: Optional[Element], path: str, default: int, what: str) -> int:
+    text = child_text(element, path)
+    try:
+        value = default if text is None else int(text)
+    except ValueError:
+        raise ModelError(f"{what} <{path}> must be an integer, got '{text}'") from None
+    if not 1 <= value <= 8192:
+        raise ModelError(f"{what} <{path}> must be in 1..8192, got {value}")
+    return value
+
+
+def _camera_config(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> CameraConfig:
+    """A camera or depth <sensor> with its gazebo_ros plugin; ModelError for bad values."""
+    name = sensor.get("name", "camera")
+    what = f"<sensor name='{name}'>"
+    camera = sensor.find("camera")
+    depth = sensor.get("type") == "depth"
+    defaults = CameraConfig(link)
+    fov = _float(camera, "horizontal_fov", defaults.horizontal_fov, what)
+    if not 0.0 < fov < math.pi:
+        raise ModelError(f"{what} <horizontal_fov> must be in (0, pi), got {fov}")
+    image_format = child_text(camera, "image/format") or defaults.image_format
+    if image_format not in IMAGE_ENCODINGS:
+        warnings.append(f"{what}: image format {image_format} is not simulated: published as rgb8")
+    near = _float(camera, "clip/near", defaults.near, what)
+    far = _float(camera, "clip/far", defaults.far, what)
+    if not 0.0 < near < far or not math.isfinite(far):
+        raise ModelError(f"{what} <clip> needs 0 < near < far, got {near}, {far}")
+    noise = None if camera is None else camera.find("noise")
+    gaussian = noise is not None and (child_text(noise, "type") or "gaussian").lower() == "gaussian"
+    stddev = _float(noise, "stddev", 0.0, what) if gaussian else 0.0
+    if stddev < 0:
+        raise ModelError(f"{what} <noise><stddev> must be >= 0, got {stddev}")
+    sensor_rate = _rate(sensor, ("update_rate",), 0.0, what)
+    params = {child.tag: (child.text or "").strip() for child in plugin}
+    plugin_rate = read_number(params.get("updateRate"), f"{what} <updateRate>", 0.0, minimum=0.0)
+    rates = [rate for rate in (sensor_rate, plugin_rate) if rate > 0]
+    cutoff = read_number(params.get("pointCloudCutoff"), f"{what} <pointCloudCutoff>", defaults.cutoff, minimum=0.0)
+    cutoff_max = read_number(
+        params.get("pointCloudCutoffMax"), f"{what} <pointCloudCutoffMax>", defaults.cutoff_max, minimum=0.0
+    )
+    # The depth plugins' own defaults for the image topics (gazebo_ros_openni_kinect / _depth_camera).
+    image_topic, info_topic = ("ir/image_raw", "ir/camera_info") if depth else ("image_raw", "camera_info")
+    return CameraConfig(
+        link=link,
+        name=name,
+        depth=depth,
+        horizontal_fov=fov,
+        width=_int(camera, "image/width", defaults.width, what),
+        height=_int(camera, "image/height", defaults.height, what),
+        image_format=image_format,
+        near=near,
+        far=far,
+        noise_mean=_float(noise, "mean", 0.0, what) if gaussian else 0.0,
+        noise_stddev=stddev,
+        update_rate=min(rates) if rates else DEFAULT_CAMERA_RATE,
+        camera_name=params.get("cameraName", "").strip("/"),
+        image_topic=params.get("imageTopicName") or image_topic,
+        info_topic=params.get("cameraInfoTopicName") or info_topic,
+        depth_topic=params.get("depthImageTopicName") or defaults.depth_topic,
+        depth_info_topic=params.get("depthImageCameraInfoTopicName") or defaults.depth_info_topic,
+        points_topic=params.get("pointCloudTopicName") or defaults.points_topic,
+        frame=params.get("frameName", ""),
+        cutoff=cutoff,
+        cutoff_max=cutoff_max,
+        pose=_sensor_pose(sensor, what),
+        robot_namespace=params.get("robotNamespace", ""),
+    )
+
+
 def _add_sensor(found: SensorBlocks, link: str, sensor: Element) -> None:
-    """One <sensor> on ``link`` (URDF and SDF write them alike): ray (``gpu_ray`` too), imu or contact."""
+    """One <sensor> on ``link`` (URDF and SDF write them alike): ray (``gpu_ray`` too), imu, contact, camera or
+    depth."""
     kind = sensor.get("type")
     plugins = sensor.findall("plugin")
     if kind in ("ray", "gpu_ray"):
@@ -216,14 +351,30 @@ def _add_sensor(found: SensorBlocks, link: str, sensor: Element) -> None:
         ]
     elif kind == "contact":
         found.contacts += [_contact_config(link, sensor, p) for p in plugins if p.get("filename") == BUMPER_PLUGIN]
+    elif kind in ("camera", "depth"):
+        known = CAMERA_PLUGINS if kind == "camera" else DEPTH_PLUGINS
+        chosen = [p for p in plugins if p.get("filename") in known]
+        found.cameras += [_camera_config(link, sensor, p, found.warnings) for p in chosen]
+        if not chosen:
+            names = ", ".join(p.get("filename", "") for p in plugins) or "no plugin"
+            found.warnings.append(
+                f"<sensor name='{sensor.get('name', '')}' type='{kind}'> on link '{link}' has {names}, not one of "
+                f"{', '.join(known)}: not published"
+            )
 
 
 def model_sensors(robot: RobotModel) -> SensorBlocks:
-    """The sensors the parsed model carries (``robot.sensors``): ray (``gpu_ray`` too), imu and contact, with a
-    ROS plugin. ModelError for bad values, or a URDF sensor in a <gazebo> block that names no link of the model."""
+    """The sensors the parsed model carries (``robot.sensors``): ray (``gpu_ray`` too), imu, contact, camera and
+    depth, with a ROS plugin; a warning names each sensor of another type (not simulated). ModelError for bad
+    values, or a URDF sensor in a <gazebo> block that names no link of the model."""
     found = SensorBlocks()
     for block in robot.sensors:
-        if block.element.get("type") not in ("ray", "gpu_ray", "imu", "contact"):
+        kind = block.element.get("type")
+        if kind not in SIMULATED_TYPES:
+            found.warnings.append(
+                f"<sensor name='{block.element.get('name', '')}' type='{kind}'> on link '{block.link}' is not "
+                f"simulated: no topics"
+            )
             continue
         if block.link is None or block.link not in robot.links:
             raise ModelError(f"<sensor name='{block.element.get('name', '')}'> must be in a <gazebo reference=link>")

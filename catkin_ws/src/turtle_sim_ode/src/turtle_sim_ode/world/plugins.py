@@ -8,7 +8,7 @@ from typing import Dict, List, Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.text import ModelError, read_number
 from turtle_sim_ode.models.urdf import GazeboPlugin
-from turtle_sim_ode.sensors.config import ContactConfig, ImuConfig, LaserConfig, imu_config
+from turtle_sim_ode.sensors.config import CameraConfig, ContactConfig, ImuConfig, LaserConfig, imu_config
 from turtle_sim_ode.sensors.kobuki import KOBUKI_CLIFF_THRESHOLD
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 
@@ -76,6 +76,7 @@ class ModelPlugins:
     lasers: List[LaserConfig] = field(default_factory=list)  # <sensor type="ray"> blocks of a URDF
     imus: List[ImuConfig] = field(default_factory=list)  # IMU plugins, of the model or in <sensor type="imu">
     contacts: List[ContactConfig] = field(default_factory=list)  # <sensor type="contact"> + bumper plugin
+    cameras: List[CameraConfig] = field(default_factory=list)  # <sensor type="camera"/"depth"> + ROS plugin
     warnings: List[str] = field(default_factory=list)
 
 

@@ -68,6 +68,9 @@ class Simulation(WorldControl):
         self.loads: List[Load] = []
         self._drive_overrides = dict(drive_overrides or {})
         self._spawned: Dict[str, _Spawned] = {}
+        # The loaded world's sun direction and sky colour for the cameras (None: Gazebo's defaults).
+        self.light_direction: Optional[Vec3] = None
+        self.sky_colour: Optional[Tuple[float, float, float]] = None
 
     @property
     def sim_time(self) -> float:
@@ -114,10 +117,11 @@ class Simulation(WorldControl):
         plugins.lasers = [laser for laser in sensors.lasers if laser.topic]
         plugins.imus += sensors.imus
         plugins.contacts = sensors.contacts
+        plugins.cameras = sensors.cameras
         self.models[name] = model
         self.plugins[name] = plugins
         self._spawned[name] = _Spawned.of(model)
-        return warnings + plugins.warnings
+        return warnings + plugins.warnings + sensors.warnings
 
     def _spawn_pose(self, pose: SpawnPose, reference_frame: str) -> Pose6:
         """(x, y, z, roll, pitch, yaw) in the world for build_model."""
@@ -166,6 +170,7 @@ class Simulation(WorldControl):
             rate = update_rate(sdf.real_time_factor, "world <real_time_factor>") / params.time_step
         old_params, old_rate = self.physics.params, self.max_update_rate
         self.physics.set_params(params)
+        self.light_direction, self.sky_colour = world.light_direction, world.background
         self.max_update_rate = rate
         warnings = list(world.warnings)
         try:
@@ -179,6 +184,7 @@ class Simulation(WorldControl):
                 self.delete(name)
             self.physics.set_params(old_params)
             self.max_update_rate = old_rate
+            self.light_direction, self.sky_colour = None, None
             raise
         for include in world.includes:
             named = f" (model '{include.name}')" if include.name else ""

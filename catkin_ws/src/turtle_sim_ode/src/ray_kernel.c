@@ -1,0 +1,445 @@
+/* The cameras' ray caster (loaded by turtle_sim_ode.sensors.ray_kernel through ctypes): one ray per pixel from the
+ * optical centre against primitive shapes (box, sphere, cylinder, capsule along z, plane), each tested only in the
+ * pixels its bounding box's projection may cover. The same tests as turtle_sim_ode.sensors.raycast, which the
+ * Python side uses where this library is not built, but on rays (u, v, 1) whose parameter is the depth, and with
+ * the near clip on depth (numpy: on the distance along the ray). */
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+enum
+{
+  kBox = 0,
+  kSphere = 1,
+  kCylinder = 2,
+  kCapsule = 3,
+  kPlane = 4
+};
+
+/* One primitive row: type, position (3), rotation world-from-shape row-major (9), parameters (3: box half extents;
+ * sphere radius; cylinder and capsule radius and length; plane normal (world) in the rotation's place and offset
+ * as parameter 0), colour (3), bounding radius. */
+enum
+{
+  kStride = 20,
+  kPosition = 1,
+  kRotation = 4,
+  kParams = 13,
+  kColour = 16,
+  kRadius = 19
+};
+
+static double dot3(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static double hitSphere(const double* o, const double* d, double r, double tMin, double* n)
+{
+  double a = dot3(d, d);
+  double b = dot3(d, o);
+  double disc = b * b - a * (dot3(o, o) - r * r);
+  if (disc < 0.0)
+  {
+    return INFINITY;
+  }
+  double t = (-b - sqrt(disc)) / a;
+  if (t <= tMin)
+  {
+    return INFINITY;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    n[i] = (o[i] + t * d[i]) / r;
+  }
+  return t;
+}
+
+static double hitBox(const double* o, const double* d, const double* half, double tMin, double* n)
+{
+  double tNear = -INFINITY;
+  double tFar = INFINITY;
+  int axis = -1;
+  for (int i = 0; i < 3; ++i)
+  {
+    if (d[i] == 0.0)
+    {
+      if (o[i] < -half[i] || o[i] > half[i])
+      {
+        return INFINITY;
+      }
+      continue;
+    }
+    double t1 = (-half[i] - o[i]) / d[i];
+    double t2 = (half[i] - o[i]) / d[i];
+    if (t1 > t2)
+    {
+      double swap = t1;
+      t1 = t2;
+      t2 = swap;
+    }
+    if (t1 > tNear)
+    {
+      tNear = t1;
+      axis = i;
+    }
+    if (t2 < tFar)
+    {
+      tFar = t2;
+    }
+  }
+  if (axis < 0 || tNear > tFar || tNear <= tMin)
+  {
+    return INFINITY;
+  }
+  n[0] = n[1] = n[2] = 0.0;
+  n[axis] = d[axis] > 0.0 ? -1.0 : 1.0;
+  return tNear;
+}
+
+/* The curved side of a cylinder along z of half length hl. */
+static double hitSide(const double* o, const double* d, double r, double hl, double tMin, double* n)
+{
+  double a = d[0] * d[0] + d[1] * d[1];
+  if (a <= 0.0)
+  {
+    return INFINITY;
+  }
+  double b = d[0] * o[0] + d[1] * o[1];
+  double c = o[0] * o[0] + o[1] * o[1] - r * r;
+  double disc = b * b - a * c;
+  if (disc < 0.0)
+  {
+    return INFINITY;
+  }
+  double t = (-b - sqrt(disc)) / a;
+  if (t <= tMin || fabs(o[2] + t * d[2]) > hl)
+  {
+    return INFINITY;
+  }
+  n[0] = (o[0] + t * d[0]) / r;
+  n[1] = (o[1] + t * d[1]) / r;
+  n[2] = 0.0;
+  return t;
+}
+
+static double hitCylinder(const double* o, const double* d, double r, double length, double tMin, double* n)
+{
+  double hl = length / 2.0;
+  double best = hitSide(o, d, r, hl, tMin, n);
+  for (int side = 0; side < 2; ++side)
+  {
+    double sign = side == 0 ? 1.0 : -1.0;
+    if (d[2] * sign >= 0.0)
+    {
+      continue;
+    }
+    double t = (sign * hl - o[2]) / d[2];
+    double x = o[0] + t * d[0];
+    double y = o[1] + t * d[1];
+    if (t > tMin && t < best && x * x + y * y <= r * r)
+    {
+      best = t;
+      n[0] = n[1] = 0.0;
+      n[2] = sign;
+    }
+  }
+  return best;
+}
+
+static double hitCapsule(const double* o, const double* d, double r, double length, double tMin, double* n)
+{
+  double hl = length / 2.0;
+  double best = hitSide(o, d, r, hl, tMin, n);
+  for (int side = 0; side < 2; ++side)
+  {
+    double shifted[3] = { o[0], o[1], o[2] - (side == 0 ? hl : -hl) };
+    double normal[3];
+    double t = hitSphere(shifted, d, r, tMin, normal);
+    if (t < best)
+    {
+      best = t;
+      n[0] = normal[0];
+      n[1] = normal[1];
+      n[2] = normal[2];
+    }
+  }
+  return best;
+}
+
+/* The pixels [box[0], box[1]) x [box[2], box[3]) where a shape's bounding box (``half`` extents along ``axes``, the
+ * rows of a 3 x 3: the shape's axes in optical coordinates, about ``centre`` in the optical frame) may show: the
+ * bounding rectangle of its corners in front of the near plane and of its edges' crossings of that plane. 0 if it
+ * lies wholly before the near plane, beyond far, or outside the image. */
+static int pixelBox(const double* centre, const double* axes, const double* half, double near, double far, double focal,
+                    double cx, double cy, int width, int height, int* box)
+{
+  double corners[8][3];
+  double zMin = INFINITY, zMax = -INFINITY;
+  for (int k = 0; k < 8; ++k)
+  {
+    for (int b = 0; b < 3; ++b)
+    {
+      corners[k][b] = centre[b];
+      for (int a = 0; a < 3; ++a)
+      {
+        corners[k][b] += ((k >> a) & 1 ? half[a] : -half[a]) * axes[3 * a + b];
+      }
+    }
+    zMin = fmin(zMin, corners[k][2]);
+    zMax = fmax(zMax, corners[k][2]);
+  }
+  if (zMax < near || zMin > far)
+  {
+    return 0;
+  }
+  double u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
+  for (int k = 0; k < 8; ++k)
+  {
+    const double* p = corners[k];
+    if (p[2] >= near)
+    {
+      u0 = fmin(u0, p[0] / p[2]);
+      u1 = fmax(u1, p[0] / p[2]);
+      v0 = fmin(v0, p[1] / p[2]);
+      v1 = fmax(v1, p[1] / p[2]);
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      const double* q = corners[k | (1 << a)];
+      if ((k >> a) & 1 || (p[2] < near) == (q[2] < near))
+      {
+        continue;
+      }
+      double s = (near - p[2]) / (q[2] - p[2]);
+      double x = (p[0] + s * (q[0] - p[0])) / near;
+      double y = (p[1] + s * (q[1] - p[1])) / near;
+      u0 = fmin(u0, x);
+      u1 = fmax(u1, x);
+      v0 = fmin(v0, y);
+      v1 = fmax(v1, y);
+    }
+  }
+  /* In pixels, clamped to the image before the conversion to int (the crossings may project very far out). */
+  box[0] = (int)fmax(0.0, floor(fmax(-1.0, u0 * focal + cx)));
+  box[1] = (int)fmin((double)width, ceil(fmin((double)width, u1 * focal + cx)) + 1.0);
+  box[2] = (int)fmax(0.0, floor(fmax(-1.0, v0 * focal + cy)));
+  box[3] = (int)fmin((double)height, ceil(fmin((double)height, v1 * focal + cy)) + 1.0);
+  return box[0] < box[1] && box[2] < box[3];
+}
+
+static uint8_t channel(double value)
+{
+  return (uint8_t)(value <= 0.0 ? 0.0 : value >= 1.0 ? 255.0 : value * 255.0 + 0.5);
+}
+
+/* Render ``count`` primitives seen from ``origin`` with ``rotation`` (world from optical, row-major), one ray through
+ * each pixel's centre: (u, v, 1) in the optical frame with u = (i - cx) / focal, v = (j - cy) / focal, so that a
+ * ray's parameter at a hit is the hit's depth along the optical axis. Fills ``distance`` (that depth, INFINITY
+ * where nothing is hit at a depth within (tMin, far]), ``depth`` (the same as float, NAN there) and ``rgb`` (shaded
+ * colours, ``sky`` there). Returns the number of ray tests made. */
+long tso_render(int width, int height, const double* origin, const double* rotation, int count,
+                const double* primitives, double tMin, double far, double focal, double cx, double cy,
+                const double* light, double ambient, const double* sky, double* distance, float* depth, uint8_t* rgb)
+{
+  long tests = 0;
+  int pixels = width * height;
+  for (int p = 0; p < pixels; ++p)
+  {
+    distance[p] = INFINITY;
+  }
+  for (int k = 0; k < count; ++k)
+  {
+    const double* row = primitives + (long)k * kStride;
+    int type = (int)row[0];
+    const double* position = row + kPosition;
+    const double* shape = row + kRotation; /* world from shape */
+    const double* params = row + kParams;
+    const double* colour = row + kColour;
+    int i0 = 0, i1 = width, j0 = 0, j1 = height;
+    double local[9]; /* shape from optical: shape^T rotation */
+    double start[3]; /* the origin in the shape's frame */
+    if (type != kPlane)
+    {
+      double rel[3] = { position[0] - origin[0], position[1] - origin[1], position[2] - origin[2] };
+      double c[3]; /* the centre in the optical frame: rotation^T rel */
+      for (int a = 0; a < 3; ++a)
+      {
+        c[a] = rotation[a] * rel[0] + rotation[3 + a] * rel[1] + rotation[6 + a] * rel[2];
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        for (int b = 0; b < 3; ++b)
+        {
+          local[3 * a + b] = shape[a] * rotation[b] + shape[3 + a] * rotation[3 + b] + shape[6 + a] * rotation[6 + b];
+        }
+        start[a] = -(shape[a] * rel[0] + shape[3 + a] * rel[1] + shape[6 + a] * rel[2]);
+      }
+      double half[3] = { params[0], params[0], params[0] };
+      if (type == kBox)
+      {
+        half[1] = params[1];
+        half[2] = params[2];
+      }
+      else if (type == kCylinder || type == kCapsule)
+      {
+        half[2] = params[1] / 2.0 + (type == kCapsule ? params[0] : 0.0);
+      }
+      int box[4];
+      if (!pixelBox(c, local, half, tMin, far, focal, cx, cy, width, height, box))
+      {
+        continue;
+      }
+      i0 = box[0];
+      i1 = box[1];
+      j0 = box[2];
+      j1 = box[3];
+    }
+    else
+    {
+      for (int a = 0; a < 9; ++a)
+      {
+        local[a] = rotation[a];
+      }
+      start[0] = origin[0];
+      start[1] = origin[1];
+      start[2] = origin[2];
+    }
+    double planeStart = type == kPlane ? params[0] - dot3(shape, start) : 0.0;
+    for (int j = j0; j < j1; ++j)
+    {
+      double v = (j - cy) / focal;
+      double rowBase[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        rowBase[a] = local[3 * a + 1] * v + local[3 * a + 2];
+      }
+      for (int i = i0; i < i1; ++i)
+      {
+        int p = j * width + i;
+        double u = (i - cx) / focal;
+        double d[3]; /* the pixel's ray (u, v, 1) in the optical frame, in the shape's frame: t is its depth */
+        for (int a = 0; a < 3; ++a)
+        {
+          d[a] = local[3 * a] * u + rowBase[a];
+        }
+        double n[3];
+        double t = INFINITY;
+        ++tests;
+        switch (type)
+        {
+          case kBox:
+            t = hitBox(start, d, params, tMin, n);
+            break;
+          case kSphere:
+            t = hitSphere(start, d, params[0], tMin, n);
+            break;
+          case kCylinder:
+            t = hitCylinder(start, d, params[0], params[1], tMin, n);
+            break;
+          case kCapsule:
+            t = hitCapsule(start, d, params[0], params[1], tMin, n);
+            break;
+          case kPlane:
+          {
+            double facing = dot3(shape, d);
+            if (facing < 0.0)
+            {
+              t = planeStart / facing;
+              n[0] = shape[0];
+              n[1] = shape[1];
+              n[2] = shape[2];
+            }
+            if (!(t > tMin))
+            {
+              t = INFINITY;
+            }
+            break;
+          }
+          default:
+            break;
+        }
+        if (!(t < distance[p]))
+        {
+          continue;
+        }
+        distance[p] = t;
+        double world[3];
+        if (type == kPlane)
+        {
+          world[0] = n[0];
+          world[1] = n[1];
+          world[2] = n[2];
+        }
+        else
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            world[a] = shape[3 * a] * n[0] + shape[3 * a + 1] * n[1] + shape[3 * a + 2] * n[2];
+          }
+        }
+        double lit = dot3(world, light);
+        double shade = ambient + (1.0 - ambient) * (lit <= 0.0 ? 0.0 : lit >= 1.0 ? 1.0 : lit);
+        rgb[3 * p] = channel(colour[0] * shade);
+        rgb[3 * p + 1] = channel(colour[1] * shade);
+        rgb[3 * p + 2] = channel(colour[2] * shade);
+      }
+    }
+  }
+  for (int p = 0; p < pixels; ++p)
+  {
+    double z = distance[p];
+    if (z <= far)
+    {
+      depth[p] = (float)z;
+    }
+    else
+    {
+      distance[p] = INFINITY;
+      depth[p] = NAN;
+      rgb[3 * p] = channel(sky[0]);
+      rgb[3 * p + 1] = channel(sky[1]);
+      rgb[3 * p + 2] = channel(sky[2]);
+    }
+  }
+  return tests;
+}
+
+/* gazebo_ros_openni_kinect's depth image and organised cloud from a rendering's ``depth`` and ``rgb``: ``depthOut``
+ * keeps the depths within (cutoff, cutoffMax), NAN elsewhere; ``cloud`` gets 32 bytes a point: x, y, z (float32,
+ * optical frame, NAN outside the cutoffs), 4 bytes of padding, b, g, r, 0, and 12 of padding; the padding bytes
+ * are left as they are (zeros: the caller's buffer is zeroed once and reused). Returns the number of NAN points. */
+long tso_cloud(int width, int height, const float* depth, const uint8_t* rgb, double focal, double cx, double cy,
+               double cutoff, double cutoffMax, float* depthOut, uint8_t* cloud)
+{
+  long missing = 0;
+  for (int j = 0; j < height; ++j)
+  {
+    double y = (j - cy) / focal;
+    for (int i = 0; i < width; ++i)
+    {
+      long p = (long)j * width + i;
+      float z = depth[p];
+      float point[3];
+      if (z > cutoff && z < cutoffMax)
+      {
+        point[0] = (float)(z * ((i - cx) / focal));
+        point[1] = (float)(z * y);
+        point[2] = z;
+      }
+      else
+      {
+        z = NAN;
+        point[0] = point[1] = point[2] = NAN;
+        ++missing;
+      }
+      depthOut[p] = z;
+      uint8_t* out = cloud + 32 * p;
+      memcpy(out, point, sizeof point);
+      out[16] = rgb[3 * p + 2];
+      out[17] = rgb[3 * p + 1];
+      out[18] = rgb[3 * p];
+    }
+  }
+  return missing;
+}

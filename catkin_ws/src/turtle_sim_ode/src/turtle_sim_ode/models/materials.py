@@ -1,0 +1,99 @@
+"""Colours of links for the cameras: URDF ``<visual><material>`` (inline ``<color rgba>`` or a named robot-level
+material), Gazebo's material scripts by name (``Gazebo/Red`` ...) from ``<gazebo reference><material>`` or SDF
+``<material><script><name>``, and SDF ``<material>`` diffuse / ambient colours."""
+from __future__ import annotations
+
+from typing import Dict, Optional, Tuple
+from xml.etree.ElementTree import Element
+
+RGB = Tuple[float, float, float]
+
+# Gazebo's common material scripts (gazebo.material), by their diffuse colour.
+GAZEBO_MATERIALS: Dict[str, RGB] = {
+    "Gazebo/White": (1.0, 1.0, 1.0),
+    "Gazebo/FlatBlack": (0.1, 0.1, 0.1),
+    "Gazebo/Black": (0.0, 0.0, 0.0),
+    "Gazebo/Grey": (0.7, 0.7, 0.7),
+    "Gazebo/DarkGrey": (0.175, 0.175, 0.175),
+    "Gazebo/Gray": (0.7, 0.7, 0.7),
+    "Gazebo/Red": (1.0, 0.0, 0.0),
+    "Gazebo/RedBright": (0.87, 0.26, 0.07),
+    "Gazebo/Green": (0.0, 1.0, 0.0),
+    "Gazebo/Blue": (0.0, 0.0, 1.0),
+    "Gazebo/SkyBlue": (0.53, 0.81, 0.92),
+    "Gazebo/Yellow": (1.0, 1.0, 0.0),
+    "Gazebo/ZincYellow": (0.9725, 0.9529, 0.2078),
+    "Gazebo/DarkYellow": (0.7, 0.7, 0.0),
+    "Gazebo/Purple": (1.0, 0.0, 1.0),
+    "Gazebo/Turquoise": (0.0, 1.0, 1.0),
+    "Gazebo/Orange": (1.0, 0.5088, 0.0468),
+    "Gazebo/Indigo": (0.33, 0.0, 0.5),
+    "Gazebo/Wood": (1.0, 0.83, 0.61),
+    "Gazebo/WoodFloor": (0.6, 0.45, 0.3),
+    "Gazebo/Bricks": (0.6, 0.3, 0.25),
+    "Gazebo/GreyTransparent": (0.5, 0.5, 0.5),
+    "Gazebo/BlueTransparent": (0.0, 0.0, 1.0),
+    "Gazebo/GreenTransparent": (0.0, 1.0, 0.0),
+    "Gazebo/RedTransparent": (1.0, 0.0, 0.0),
+}
+# What a link shows when nothing names its colour (Gazebo's default material is a light grey).
+DEFAULT_COLOR: RGB = (0.7, 0.7, 0.7)
+
+
+def rgb_of(text: Optional[str]) -> Optional[RGB]:
+    """The first three of 3 or 4 numbers in 0..1 (clamped), or None for text that is not."""
+    if text is None:
+        return None
+    try:
+        values = [float(v) for v in text.split()]
+    except ValueError:
+        return None
+    if len(values) not in (3, 4):
+        return None
+    return tuple(min(1.0, max(0.0, v)) for v in values[:3])  # type: ignore[return-value]
+
+
+def gazebo_material(name: Optional[str]) -> Optional[RGB]:
+    """The colour of a Gazebo material script name, None if it is not one of the common ones."""
+    return None if name is None else GAZEBO_MATERIALS.get(name.strip())
+
+
+def urdf_named_materials(robot: Element) -> Dict[str, RGB]:
+    """The robot-level ``<material name><color rgba>`` definitions of a URDF."""
+    found: Dict[str, RGB] = {}
+    for material in robot.findall("material"):
+        color = rgb_of(material.find("color").get("rgba") if material.find("color") is not None else None)
+        if material.get("name") and color is not None:
+            found[material.get("name", "")] = color
+    return found
+
+
+def urdf_link_color(link: Element, named: Dict[str, RGB]) -> Optional[RGB]:
+    """The first ``<visual><material>`` colour of a URDF link: inline rgba, else the named material's."""
+    for visual in link.findall("visual"):
+        material = visual.find("material")
+        if material is None:
+            continue
+        color_element = material.find("color")
+        color = rgb_of(color_element.get("rgba")) if color_element is not None else None
+        if color is None:
+            color = named.get(material.get("name", ""))
+        if color is not None:
+            return color
+    return None
+
+
+def sdf_link_color(link: Element) -> Optional[RGB]:
+    """The first ``<visual><material>`` colour of an SDF link: diffuse, ambient, else a Gazebo script name."""
+    for visual in link.findall("visual"):
+        material = visual.find("material")
+        if material is None:
+            continue
+        for tag in ("diffuse", "ambient"):
+            color = rgb_of(material.findtext(tag))
+            if color is not None:
+                return color
+        color = gazebo_material(material.findtext("script/name"))
+        if color is not None:
+            return color
+    return None

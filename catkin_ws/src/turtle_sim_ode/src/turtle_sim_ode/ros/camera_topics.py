@@ -1,0 +1,150 @@
+"""The ROS side of the camera plugins (libgazebo_ros_camera.so, libgazebo_ros_openni_kinect.so,
+libgazebo_ros_depth_camera.so): sensor_msgs/Image, CameraInfo and PointCloud2 of a CameraSensor, all of one
+rendering with one sim-time stamp, in the plugin's frameName. Nothing is rendered while no one subscribes to an
+image, depth image or point cloud topic; camera_info alone costs no rendering."""
+from __future__ import annotations
+
+import struct
+from io import BytesIO
+from typing import Any, Callable, Dict, Optional
+
+import numpy as np
+import rospy
+from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
+
+from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, plugin_topic, topic_prefix
+from turtle_sim_ode.ros.wire import release
+from turtle_sim_ode.sensors.camera import CLOUD_POINT_STEP, CameraSensor, Frame
+from turtle_sim_ode.sensors.config import CameraConfig
+
+# sensor_msgs/PointCloud2 as gazebo_ros_openni_kinect lays it out (PointCloud2Modifier "xyz", "rgb"): x, y, z
+# float32, 4 bytes of padding, rgb (a float32's bytes: b, g, r, 0 as PCL and rviz read them), padding to 32.
+POINT_STEP = CLOUD_POINT_STEP
+_UINT32 = struct.Struct("<I")
+POINT_FIELDS = [
+    PointField("x", 0, PointField.FLOAT32, 1),
+    PointField("y", 4, PointField.FLOAT32, 1),
+    PointField("z", 8, PointField.FLOAT32, 1),
+    PointField("rgb", 16, PointField.FLOAT32, 1),
+]
+
+
+def camera_info(config: CameraConfig, frame: str, cx: float, cy: float) -> CameraInfo:
+    """K and P of an ideal pinhole (no distortion: plumb_bob with zeros) for ``config``'s size and FOV."""
+    f = config.focal_length
+    info = CameraInfo()
+    info.header.frame_id = frame
+    info.width, info.height = config.width, config.height
+    info.distortion_model = "plumb_bob"
+    info.D = [0.0] * 5
+    info.K = [f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0]
+    info.R = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+    info.P = [f, 0.0, cx, 0.0, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+    return info
+
+
+def packer(message: Any) -> Callable[..., bytes]:
+    """Packs ``message`` with a header seq and stamp, as genpy serialises it; with ``data`` (an array or bytes) as
+    its uint8[] ``data`` field, spliced in with one copy (genpy would copy megabytes of a cloud four times), and
+    ``is_dense`` for a cloud."""
+
+    def pack(seq: int, secs: int, nsecs: int, data: Any = None, is_dense: Optional[bool] = None) -> bytes:
+        header = message.header
+        header.seq, header.stamp.secs, header.stamp.nsecs = seq, secs, nsecs
+        if is_dense is not None:
+            message.is_dense = is_dense
+        buffer = BytesIO()
+        message.serialize(buffer)  # data empty: a length of 0, then is_dense for a cloud
+        raw = buffer.getvalue()
+        if data is None:
+            return raw
+        view = memoryview(np.ascontiguousarray(data)).cast("B") if isinstance(data, np.ndarray) else data
+        tail = len(raw) - (1 if isinstance(message, PointCloud2) else 0)
+        return b"".join((raw[: tail - 4], _UINT32.pack(len(view)), view, raw[tail:]))
+
+    return pack
+
+
+def templates(sensor: CameraSensor) -> Dict[str, Any]:
+    """The messages of a camera, but for stamps and data: image, info, and for a depth camera depth, depth_info
+    and points."""
+    config, frame = sensor.config, sensor.frame
+    image = Image(encoding=config.encoding, height=config.height, width=config.width)
+    image.step = config.width * (1 if config.encoding == "mono8" else 3)
+    found = {"image": image, "info": camera_info(config, frame, sensor.cx, sensor.cy)}
+    if config.depth:
+        found["depth"] = Image(encoding="32FC1", height=config.height, width=config.width, step=4 * config.width)
+        found["depth_info"] = camera_info(config, frame, sensor.cx, sensor.cy)
+        cloud = PointCloud2(height=config.height, width=config.width, fields=POINT_FIELDS)
+        cloud.point_step, cloud.row_step = POINT_STEP, POINT_STEP * config.width
+        found["points"] = cloud
+    for message in found.values():
+        message.header.frame_id = frame
+    return found
+
+
+def colour_image(rgb: np.ndarray, encoding: str) -> np.ndarray:
+    """The image's pixels in ``encoding`` (rgb8, bgr8 or mono8)."""
+    if encoding == "bgr8":
+        return rgb[:, :, ::-1]
+    if encoding == "mono8":
+        grey = rgb.astype(np.float32) @ np.array([0.299, 0.587, 0.114], dtype=np.float32)
+        return (grey + 0.5).astype(np.uint8)
+    return rgb
+
+
+class CameraPublisher(Periodic):
+    """A camera or depth camera plugin's topics, under ``robotNamespace``/``cameraName`` as gazebo_ros has them."""
+
+    def __init__(self, sensor: CameraSensor, colours: Callable[[], Dict], namespace: str) -> None:
+        """``colours``: each geom's colour now (sensors.camera.scene_colours of the world's models)."""
+        config = sensor.config
+        super().__init__(1.0 / config.update_rate)
+        self._sensor = sensor
+        self._colours = colours
+        prefix = topic_prefix(namespace or config.robot_namespace) + topic_prefix(config.camera_name)
+
+        def topic(name: str) -> str:
+            return plugin_topic("", name) if name.startswith("/") else prefix + name
+
+        messages = templates(sensor)
+        self._image = (packed_publisher(topic(config.image_topic), Image), packer(messages["image"]))
+        self._info = (packed_publisher(topic(config.info_topic), CameraInfo), packer(messages["info"]))
+        self._channels = [self._image, self._info]
+        self._depth = self._depth_info = self._points = None
+        if config.depth:
+            self._depth = (packed_publisher(topic(config.depth_topic), Image), packer(messages["depth"]))
+            depth_info = packer(messages["depth_info"])
+            self._depth_info = (packed_publisher(topic(config.depth_info_topic), CameraInfo), depth_info)
+            self._points = (packed_publisher(topic(config.points_topic), PointCloud2), packer(messages["points"]))
+            self._channels += [self._depth, self._depth_info, self._points]
+        self.rendered = 0  # renderings made: none while no image, depth or cloud subscriber listens
+
+    @staticmethod
+    def _heard(channel: Optional[tuple]) -> bool:
+        return channel is not None and channel[0].get_num_connections() > 0
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        secs, nsecs = stamp.secs, stamp.nsecs
+        for channel in (self._info, self._depth_info):
+            if self._heard(channel):
+                channel[0].publish(channel[1], secs, nsecs)
+        image, depth, points = (self._heard(c) for c in (self._image, self._depth, self._points))
+        if not (image or depth or points):
+            return
+        frame: Frame = self._sensor.render(self._colours())
+        self.rendered += 1
+        if image:
+            rgb = colour_image(frame.rgb, self._sensor.config.encoding)
+            self._image[0].publish(self._image[1], secs, nsecs, rgb)
+        if not (depth or points):
+            return
+        depth_image, cloud, dense = self._sensor.organised_cloud(frame)
+        if depth:
+            self._depth[0].publish(self._depth[1], secs, nsecs, depth_image)  # type: ignore[index]
+        if points:
+            self._points[0].publish(self._points[1], secs, nsecs, cloud, dense)  # type: ignore[index]
+
+    def close(self) -> None:
+        for publisher, _ in self._channels:
+            release(publisher)

@@ -1,0 +1,243 @@
+"""A camera on a model's link, rendered on the CPU by casting one ray per pixel (numpy, see sensors.raycast) into
+the collision geometry of every other model and the ground plane: a shaded colour image, a depth image (metres
+along the optical axis, as Gazebo's depth cameras give it) and an organised point cloud in the optical frame.
+
+The optical frame is gazebo_ros's: z along the sensor's x (forward), x to the image's right (the sensor's -y),
+y down (the sensor's -z). A pixel (i, j) looks through its centre: x/z = (i - cx) / f, y/z = (j - cy) / f with
+cx = (width - 1) / 2, cy = (height - 1) / 2, f = width / (2 tan(hfov / 2)).
+"""
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+from typing import Dict, Iterable, Optional, Tuple
+
+import numpy as np
+import ode
+
+from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, quat_from_rpy, quat_matrix
+from turtle_sim_ode.models.materials import DEFAULT_COLOR, GAZEBO_MATERIALS, RGB
+from turtle_sim_ode.physics.world import PhysicsWorld
+from turtle_sim_ode.sensors.config import CameraConfig
+from turtle_sim_ode.sensors.ray_kernel import RayCaster
+from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
+from turtle_sim_ode.sensors.raycast import hit_plane, primitive
+from turtle_sim_ode.sensors.rays import world_geoms
+
+# Gazebo's defaults: the scene's background, the ground_plane model's material, the sun model's direction.
+SKY_COLOR: RGB = (0.7, 0.7, 0.7)
+GROUND_COLOR: RGB = GAZEBO_MATERIALS["Gazebo/Grey"]
+SUN_DIRECTION = (-0.5, 0.1, -0.9)
+AMBIENT = 0.4  # share of a surface's colour lit from everywhere; the rest from the sun, by the cosine law
+CLOUD_POINT_STEP = 32  # bytes a point: x, y, z, padding, rgb, padding (PointCloud2Modifier "xyz", "rgb")
+# Optical frame from sensor frame (rows: optical x, y, z in sensor axes).
+OPTICAL_FROM_SENSOR = np.array([[0.0, -1.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]])
+
+
+def scene_colours(models: Iterable[BuiltModel]) -> Dict[ode.GeomObject, RGB]:
+    """Each collision geom's colour: its link's (RobotModel links' ``color``), else Gazebo's default grey."""
+    colours: Dict[ode.GeomObject, RGB] = {}
+    for model in models:
+        links = model.robot.links
+        for link, geoms in model.geoms.items():
+            colour = links[link].color if link in links and links[link].color is not None else DEFAULT_COLOR
+            for geom in geoms:
+                colours[geom] = colour
+    return colours
+
+
+@dataclass
+class Frame:
+    """One rendering: ``rgb`` (H, W, 3) uint8; ``depth`` (H, W) float32 metres along the optical axis, NaN where
+    nothing is within (near, far); ``pose``: the optical frame in the world (position, rotation matrix)."""
+
+    rgb: np.ndarray
+    depth: np.ndarray
+    pose: Tuple[np.ndarray, np.ndarray]
+
+
+class CameraSensor:
+    """Renders ``config``'s camera on ``link`` of ``model``: every geom but the model's own, and the ground."""
+
+    def __init__(
+        self,
+        physics: PhysicsWorld,
+        model: BuiltModel,
+        config: CameraConfig,
+        rng: Optional[random.Random] = None,
+        sun_direction: Optional[Tuple[float, float, float]] = None,
+        ray_kernel: bool = True,
+        sky: Optional[RGB] = None,
+    ) -> None:
+        """``sun_direction`` (the world's directional light) and ``sky`` default to Gazebo's; ``ray_kernel``: cast
+        the rays in C (src/ray_kernel.c) when the library is built, else with numpy."""
+        model.link_transform(config.link)  # KeyError now for a missing link
+        self.physics = physics
+        self.model = model
+        self.config = config
+        self._rng = np.random.default_rng((rng or random.Random()).getrandbits(32))
+        self._mount: Transform = (tuple(config.pose[:3]), quat_from_rpy(*config.pose[3:]))  # type: ignore[assignment]
+        width, height = config.width, config.height
+        self.focal_length = config.focal_length
+        self.cx, self.cy = (width - 1) / 2.0, (height - 1) / 2.0
+        u = (np.arange(width) - self.cx) / self.focal_length  # x / z of each column
+        v = (np.arange(height) - self.cy) / self.focal_length  # y / z of each row
+        self._u, self._v = u, v
+        self._sky = sky if sky is not None else SKY_COLOR
+        light = -np.asarray(sun_direction if sun_direction is not None else SUN_DIRECTION, dtype=float)
+        self._light = light / np.linalg.norm(light)
+        lib = ray_kernel_library() if ray_kernel else None
+        self._caster = RayCaster(lib, width, height) if lib is not None else None
+        if self._caster is None:  # the numpy rays' directions (tens of MB for a full-HD camera: only if used)
+            optical = np.empty((height, width, 3))
+            optical[:, :, 0] = u[None, :]
+            optical[:, :, 1] = v[:, None]
+            optical[:, :, 2] = 1.0
+            norm = np.linalg.norm(optical, axis=2)
+            self._optical_dirs = optical / norm[:, :, None]  # unit ray directions, optical frame
+            self._depth_per_distance = 1.0 / norm  # optical z of a hit per metre along its ray
+
+    @property
+    def uses_ray_kernel(self) -> bool:
+        return self._caster is not None
+
+    @property
+    def frame(self) -> str:
+        return self.config.frame or self.config.link
+
+    def optical_pose(self) -> Tuple[np.ndarray, np.ndarray]:
+        """The optical frame's origin and rotation (world from optical) now."""
+        position, quaternion = compose(self.model.link_transform(self.config.link), self._mount)
+        world_from_sensor = np.array(quat_matrix(quaternion))
+        return np.array(position), world_from_sensor @ OPTICAL_FROM_SENSOR.T
+
+    def _pixel_box(self, centre: np.ndarray, radius: float) -> Optional[Tuple[int, int, int, int]]:
+        """Columns and rows (first, end) where a sphere at ``centre`` (optical frame) may show; None if nowhere."""
+        x, y, z = centre
+        config = self.config
+        if z + radius < config.near or z - radius > config.far:
+            return None
+        if z - radius <= 1e-3:  # about the camera's plane: any pixel
+            return 0, config.width, 0, config.height
+        low, high = z - radius, z + radius
+        f = self.focal_length
+        columns = (
+            f * min((x - radius) / low, (x - radius) / high) + self.cx,
+            f * max((x + radius) / low, (x + radius) / high) + self.cx,
+        )
+        rows = (
+            f * min((y - radius) / low, (y - radius) / high) + self.cy,
+            f * max((y + radius) / low, (y + radius) / high) + self.cy,
+        )
+        i0, i1 = max(0, int(np.floor(columns[0]))), min(config.width, int(np.ceil(columns[1])) + 1)
+        j0, j1 = max(0, int(np.floor(rows[0]))), min(config.height, int(np.ceil(rows[1])) + 1)
+        if i0 >= i1 or j0 >= j1:
+            return None
+        return i0, i1, j0, j1
+
+    def render(self, colours: Dict[ode.GeomObject, RGB]) -> Frame:
+        """Cast every pixel's ray; ``colours`` gives each geom's colour (see scene_colours)."""
+        config = self.config
+        origin, rotation = self.optical_pose()
+        if self._caster is not None:
+            ground = self.physics.ground
+            # Near to far, the ground last: a farther surface then fails the depth test before it is shaded.
+            ox, oy, oz = origin
+            near_first = sorted(
+                world_geoms(self.physics, self.model),
+                key=lambda g: sum((a - b) ** 2 for a, b in zip(g.getPosition(), (ox, oy, oz))),
+            )
+            geoms = near_first + [ground]
+            _, depth, rgb = self._caster.render(
+                geoms,
+                {**colours, ground: GROUND_COLOR},
+                DEFAULT_COLOR,
+                origin,
+                rotation,
+                config.near,
+                config.far,
+                (self.focal_length, self.cx, self.cy),
+                self._light,
+                AMBIENT,
+                self._sky,
+            )
+            if config.noise_stddev > 0 or config.noise_mean != 0:
+                noisy = rgb / 255.0 + self._rng.normal(config.noise_mean, config.noise_stddev, rgb.shape)
+                rgb = (np.clip(noisy, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+            return Frame(rgb, depth, (origin, rotation))
+        height, width = config.height, config.width
+        dirs = self._optical_dirs @ rotation.T  # world directions (H, W, 3)
+        distance = np.full((height, width), np.inf)
+        shade = np.empty((height, width, 3))
+        shade[:, :] = self._sky
+        t_min = config.near
+
+        def paint(t: np.ndarray, normals: np.ndarray, colour: RGB, box: Tuple[int, int, int, int]) -> None:
+            i0, i1, j0, j1 = box
+            region = distance[j0:j1, i0:i1]
+            t = t.reshape(region.shape)
+            nearer = t < region
+            if not nearer.any():
+                return
+            region[nearer] = t[nearer]
+            lit = np.clip(normals.reshape(region.shape + (3,))[nearer] @ self._light, 0.0, 1.0)
+            shade[j0:j1, i0:i1][nearer] = np.outer(AMBIENT + (1.0 - AMBIENT) * lit, colour)
+
+        full = (0, width, 0, height)
+        ground = self.physics.ground
+        normal, offset = ground.getParams()
+        t, normals = hit_plane(origin, dirs.reshape(-1, 3), np.array(normal, dtype=float), offset, t_min)
+        paint(t, normals, GROUND_COLOR, full)
+        for geom in world_geoms(self.physics, self.model):
+            shape = primitive(geom)
+            if shape is None:
+                continue
+            box = self._pixel_box((shape.position - origin) @ rotation, shape.radius)
+            if box is None:
+                continue
+            i0, i1, j0, j1 = box
+            t, normals = shape.hit(origin, dirs[j0:j1, i0:i1].reshape(-1, 3), t_min)
+            paint(t, normals, colours.get(geom, DEFAULT_COLOR), box)
+        depth = distance * self._depth_per_distance
+        missed = ~(depth <= config.far)
+        shade[missed] = self._sky
+        depth[missed] = np.nan
+        if config.noise_stddev > 0 or config.noise_mean != 0:
+            shade += self._rng.normal(config.noise_mean, config.noise_stddev, shade.shape)
+        rgb = (np.clip(shade, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+        return Frame(rgb, depth.astype(np.float32), (origin, rotation))
+
+    def depth_image(self, frame: Frame) -> np.ndarray:
+        """The depth camera plugins' depth image: metres within (cutoff, cutoff_max), NaN elsewhere (float32)."""
+        depth = frame.depth
+        keep = (depth > self.config.cutoff) & (depth < self.config.cutoff_max)
+        return np.where(keep, depth, np.float32(np.nan)).astype(np.float32)
+
+    def organised_cloud(self, frame: Frame) -> Tuple[np.ndarray, np.ndarray, bool]:
+        """The depth image (see depth_image), the organised cloud's bytes in gazebo_ros_openni_kinect's
+        PointCloud2 layout ((H, W, CLOUD_POINT_STEP) uint8: x, y, z float32 at 0, 4, 8, NaN outside the cutoffs;
+        b, g, r at 16, 17, 18 as PCL packs rgb) and whether every point is finite. With the ray kernel the arrays
+        are overwritten by the next call."""
+        config = self.config
+        if self._caster is not None:
+            lens = (self.focal_length, self.cx, self.cy)
+            depth, cloud, missing = self._caster.cloud(frame.depth, frame.rgb, lens, config.cutoff, config.cutoff_max)
+            return depth, cloud, missing == 0
+        depth = self.depth_image(frame)
+        height, width = depth.shape
+        data = np.zeros((height, width, CLOUD_POINT_STEP // 4), dtype=np.float32)
+        data[:, :, 0] = depth * self._u[None, :]
+        data[:, :, 1] = depth * self._v[:, None]
+        data[:, :, 2] = depth
+        cloud = data.view(np.uint8).reshape(height, width, CLOUD_POINT_STEP)
+        cloud[:, :, 16:19] = frame.rgb[:, :, ::-1]
+        return depth, cloud, bool(np.isfinite(depth).all())
+
+    def points(self, frame: Frame) -> np.ndarray:
+        """The organised cloud, (H, W, 3) float32 x, y, z in the optical frame; NaN outside the cutoffs."""
+        depth = self.depth_image(frame)
+        cloud = np.empty(depth.shape + (3,), dtype=np.float32)
+        cloud[:, :, 0] = depth * self._u[None, :]
+        cloud[:, :, 1] = depth * self._v[:, None]
+        cloud[:, :, 2] = depth
+        return cloud

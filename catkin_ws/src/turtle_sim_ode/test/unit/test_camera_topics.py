@@ -1,0 +1,133 @@
+"""The camera plugins' ROS adapter without a master: publishers stand in for rospy's, the packed messages are read
+back with genpy; nothing is rendered while no one subscribes to an image, depth image or cloud."""
+from __future__ import annotations
+
+import dataclasses
+import io
+import math
+import struct
+from typing import Dict, List
+
+import numpy as np
+import pytest
+import rospy
+from sensor_msgs.msg import CameraInfo, Image, PointCloud2
+from test_camera import camera_world
+
+from turtle_sim_ode.ros import camera_topics, periodic
+from turtle_sim_ode.sensors.camera import scene_colours
+
+
+class FakePublisher:
+    """A PackedPublisher's interface: counts of subscribers set by the test, messages kept as genpy objects."""
+
+    made: Dict[str, "FakePublisher"] = {}
+
+    def __init__(self, topic: str, data_class: type) -> None:
+        self.topic, self.data_class = topic, data_class
+        self.connections = 0
+        self.messages: List = []
+        FakePublisher.made[topic] = self
+
+    def get_num_connections(self) -> int:
+        return self.connections
+
+    def publish(self, pack, *fields) -> None:
+        message = self.data_class()
+        message.deserialize(pack(len(self.messages) + 1, *fields))
+        self.messages.append(message)
+
+    def unregister(self) -> None:
+        pass
+
+
+@pytest.fixture
+def publisher(monkeypatch):
+    FakePublisher.made = {}
+    monkeypatch.setattr(periodic, "PackedPublisher", FakePublisher)  # camera topics are advertised there
+    monkeypatch.setattr(camera_topics, "release", lambda handle: None)
+    sim, camera = camera_world(width=64, height=48)
+    return camera_topics.CameraPublisher(camera, lambda: scene_colours(sim.models.values()), "robot"), camera
+
+
+def test_topics_follow_robot_namespace_and_camera_name(publisher) -> None:
+    assert set(FakePublisher.made) == {
+        "robot/cam/ir/image_raw",
+        "robot/cam/ir/camera_info",
+        "robot/cam/depth/image_raw",
+        "robot/cam/depth/camera_info",
+        "robot/cam/points",
+    }
+
+
+def test_nothing_is_rendered_unheard_and_camera_info_alone_renders_nothing(publisher) -> None:
+    camera_publisher, camera = publisher
+    stamp = rospy.Time(3, 5)
+    camera_publisher.publish(stamp, 3.0)
+    assert camera_publisher.rendered == 0 and not any(p.messages for p in FakePublisher.made.values())
+    FakePublisher.made["robot/cam/ir/camera_info"].connections = 1
+    camera_publisher.publish(stamp, 3.0)
+    assert camera_publisher.rendered == 0
+    info: CameraInfo = FakePublisher.made["robot/cam/ir/camera_info"].messages[0]
+    f = 64 / (2 * math.tan(1.047 / 2))
+    assert info.K[0] == pytest.approx(f) and info.K[4] == pytest.approx(f)
+    assert (info.K[2], info.K[5], info.P[2], info.P[6]) == (31.5, 23.5, 31.5, 23.5)
+    assert (info.width, info.height, info.header.frame_id, list(info.D)) == (64, 48, "cam_optical", [0.0] * 5)
+
+
+def test_one_rendering_feeds_image_depth_and_cloud_with_one_stamp(publisher) -> None:
+    camera_publisher, camera = publisher
+    for topic in ("robot/cam/ir/image_raw", "robot/cam/depth/image_raw", "robot/cam/points"):
+        FakePublisher.made[topic].connections = 1
+    camera_publisher.publish(rospy.Time(3, 5), 3.0)
+    assert camera_publisher.rendered == 1
+    image: Image = FakePublisher.made["robot/cam/ir/image_raw"].messages[0]
+    depth: Image = FakePublisher.made["robot/cam/depth/image_raw"].messages[0]
+    cloud: PointCloud2 = FakePublisher.made["robot/cam/points"].messages[0]
+    for message in (image, depth, cloud):
+        assert (message.header.stamp.secs, message.header.stamp.nsecs) == (3, 5)
+        assert message.header.frame_id == "cam_optical"
+        assert (message.height, message.width) == (48, 64)
+    assert (image.encoding, image.step, len(image.data)) == ("rgb8", 64 * 3, 64 * 48 * 3)
+    assert image.data[(24 * 64 + 32) * 3] > 2 * image.data[(24 * 64 + 32) * 3 + 1]  # red box ahead
+    assert (depth.encoding, depth.step) == ("32FC1", 64 * 4)
+    depths = np.frombuffer(depth.data, dtype="<f4").reshape(48, 64)
+    assert depths[24, 32] == pytest.approx(1.5, abs=0.01) and math.isnan(depths[0, 32])
+    assert [(f.name, f.offset, f.datatype) for f in cloud.fields] == [
+        ("x", 0, 7),
+        ("y", 4, 7),
+        ("z", 8, 7),
+        ("rgb", 16, 7),
+    ]
+    assert (cloud.point_step, cloud.row_step, cloud.is_dense, cloud.is_bigendian) == (32, 32 * 64, False, False)
+    offset = (24 * 64 + 32) * 32
+    x, y, z = struct.unpack_from("<3f", cloud.data, offset)
+    assert z == pytest.approx(1.5, abs=0.01)
+    b, g, r = cloud.data[offset + 16 : offset + 19]
+    assert r > 2 * max(g, b)  # packed as PCL reads rgb: 0x00RRGGBB in a little-endian float
+
+
+def test_the_spliced_data_is_byte_for_byte_what_genpy_writes(publisher) -> None:
+    _, camera = publisher
+    messages = camera_topics.templates(camera)
+    data = np.arange(2 * 3 * 32, dtype=np.uint8).reshape(2, 3, 32)
+    for key, extra in (("image", ()), ("depth", ()), ("points", (False,))):
+        message = messages[key]
+        packed = camera_topics.packer(message)(7, 8, 9, data, *extra)
+        message.data = data.tobytes()
+        buffer = io.BytesIO()
+        message.serialize(buffer)
+        assert packed == buffer.getvalue(), key
+
+
+def test_a_plain_camera_has_image_and_info_only_in_its_format(monkeypatch) -> None:
+    FakePublisher.made = {}
+    monkeypatch.setattr(periodic, "PackedPublisher", FakePublisher)  # camera topics are advertised there
+    sim, camera = camera_world(kind="camera", plugin="libgazebo_ros_camera.so", width=40, height=30)
+    camera.config = dataclasses.replace(camera.config, image_format="L8")
+    camera_publisher = camera_topics.CameraPublisher(camera, lambda: scene_colours(sim.models.values()), "")
+    assert set(FakePublisher.made) == {"cam/image_raw", "cam/camera_info"}
+    FakePublisher.made["cam/image_raw"].connections = 1
+    camera_publisher.publish(rospy.Time(1, 0), 1.0)
+    image: Image = FakePublisher.made["cam/image_raw"].messages[0]
+    assert (image.encoding, image.step, len(image.data), camera_publisher.rendered) == ("mono8", 40, 1200, 1)
