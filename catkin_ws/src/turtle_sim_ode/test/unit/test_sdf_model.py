@@ -520,19 +520,21 @@ def test_unsupported_parts_are_warned_about():
 
 def test_bad_surface_leaves_the_static_space_clean():
     physics = PhysicsWorld()
-    robot = parse_sdf_model(
-        sdf(
-            model(
-                "m",
-                link(
-                    "a",
-                    extra=box_collision("1 1 1")
-                    + box_collision("1 1 1", "<surface><friction><ode><mu>-1</mu></ode></friction></surface>"),
-                ),
-                static=True,
-            )
+    text = sdf(
+        model(
+            "m",
+            link(
+                "a",
+                extra=box_collision("1 1 1")
+                + box_collision("1 1 1", "<surface><friction><ode><mu>-1</mu></ode></friction></surface>"),
+            ),
+            static=True,
         )
     )
+    with pytest.raises(ModelError, match=r"link 'a'.*friction/ode/mu"):  # the parser refuses it (issue 14)
+        parse_sdf_model(text)
+    robot = parse_sdf_model(text.replace("<mu>-1</mu>", "<mu>1</mu>"))
+    robot.surfaces["a"] = GazeboSurface(mu1=-1.0)  # past the parser: the builder must still clean up
     with pytest.raises(ValueError, match="mu"):
         build_model(physics, robot)
     assert physics.static_space.getNumGeoms() == 0

@@ -398,6 +398,11 @@ def _surface_for(robot: RobotModel, link: str, default: SurfaceParams) -> Surfac
         mu2=default.mu2 if tags.mu2 is None else tags.mu2,
         kp=default.kp if tags.kp is None else tags.kp,
         kd=default.kd if tags.kd is None else tags.kd,
+        min_depth=default.min_depth if tags.min_depth is None else tags.min_depth,
+        max_vel=default.max_vel if tags.max_vel is None else tags.max_vel,
+        fdir1=default.fdir1 if tags.fdir1 is None else tags.fdir1,
+        slip1=default.slip1 if tags.slip1 is None else tags.slip1,
+        slip2=default.slip2 if tags.slip2 is None else tags.slip2,
     )
 
 

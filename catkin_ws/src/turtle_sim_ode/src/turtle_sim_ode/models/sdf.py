@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Dict, List, Optional, Set, Tuple
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Set, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
@@ -41,6 +41,7 @@ from turtle_sim_ode.models.urdf import (
     _offset,
     _vec3,
     check_size,
+    read_surface_value,
 )
 
 if TYPE_CHECKING:
@@ -66,6 +67,9 @@ SURFACE_PATHS = {
     "kd": "contact/ode/kd",
     "max_vel": "contact/ode/max_vel",
     "min_depth": "contact/ode/min_depth",
+    "fdir1": "friction/ode/fdir1",
+    "slip1": "friction/ode/slip1",
+    "slip2": "friction/ode/slip2",
 }
 # <world> children that change nothing the simulator models.
 SILENT_WORLD_TAGS = ("light", "scene", "gui", "atmosphere", "spherical_coordinates", "magnetic_field", "wind", "audio")
@@ -316,14 +320,14 @@ def _parse_geometry(
     raise ModelError(f"{what}: unsupported geometry")
 
 
-def _parse_surface(element: Optional[Element], what: str) -> Dict[str, float]:
+def _parse_surface(element: Optional[Element], what: str) -> Dict[str, Any]:
     if element is None:
         return {}
     values = {}
     for key, path in SURFACE_PATHS.items():
-        value = _optional_float(element, path, f"{what} <surface>")
-        if value is not None:
-            values[key] = value
+        text = child_text(element, path)
+        if text is not None:
+            values[key] = read_surface_value(key, text, f"{what} <surface> <{path}>")
     return values
 
 

@@ -24,7 +24,18 @@ MAX_INERTIA = 1e12
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
 # Stand-in for a mesh collision: mesh files are never opened, so their size is unknown.
 MESH_PLACEHOLDER_EDGE = 0.01
-SURFACE_TAGS = {"mu1": "mu1", "mu2": "mu2", "kp": "kp", "kd": "kd", "maxVel": "max_vel", "minDepth": "min_depth"}
+# <gazebo reference="link"> contact tags -> GazeboSurface fields (Gazebo's ODE surface of the link's collisions).
+SURFACE_TAGS = {
+    "mu1": "mu1",
+    "mu2": "mu2",
+    "kp": "kp",
+    "kd": "kd",
+    "maxVel": "max_vel",
+    "minDepth": "min_depth",
+    "fdir1": "fdir1",
+    "slip1": "slip1",
+    "slip2": "slip2",
+}
 
 
 @dataclass(frozen=True)
@@ -124,6 +135,23 @@ class GazeboSurface:
     kd: Optional[float] = None
     max_vel: Optional[float] = None
     min_depth: Optional[float] = None
+    fdir1: Optional[Vec3] = None
+    slip1: Optional[float] = None
+    slip2: Optional[float] = None
+
+
+def read_surface_value(field_name: str, text: Optional[str], what: str) -> Union[float, Vec3]:
+    """One GazeboSurface field from its tag's text: ``fdir1`` three finite numbers, ``kp`` a finite number > 0, the
+    others finite and >= 0 (Gazebo's ODE would take a negative min_depth or max_vel, or NaN, and misbehave);
+    ModelError naming ``what`` (the link and the tag) otherwise."""
+    if field_name == "fdir1":
+        if text is None:
+            raise ModelError(f"{what}: expected 3 numbers, got nothing")
+        return _vec3(text, what, (0.0, 0.0, 0.0))
+    value = read_number(text, what, minimum=0.0)
+    if field_name == "kp" and value <= 0:
+        raise ModelError(f"{what} must be > 0, got '{text}'")
+    return value
 
 
 @dataclass(frozen=True)
@@ -360,8 +388,8 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
     values = {}
     for child in element:
         if child.tag in SURFACE_TAGS:
-            values[SURFACE_TAGS[child.tag]] = read_number(
-                _tag_value(child), f"<gazebo reference='{reference}'> {child.tag}"
+            values[SURFACE_TAGS[child.tag]] = read_surface_value(
+                SURFACE_TAGS[child.tag], _tag_value(child), f"<gazebo reference='{reference}'> <{child.tag}>"
             )
     if not values:
         return
