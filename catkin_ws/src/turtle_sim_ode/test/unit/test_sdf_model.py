@@ -8,7 +8,7 @@ from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
 
 from turtle_sim_ode.models.builder import build_model, compose, inverse, pose_transform, quat_from_rpy
 from turtle_sim_ode.models.sdf import PLANE_THICKNESS, Include, parse_sdf_model, parse_sdf_world
-from turtle_sim_ode.models.urdf import Box, GazeboSurface, parse_urdf, Pose
+from turtle_sim_ode.models.urdf import Box, GazeboSurface, Mesh, parse_urdf, Pose
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams
@@ -327,7 +327,7 @@ def test_plane_becomes_a_box_below_it_in_static_models_only():
         parse_sdf_model(sdf(model("m", link("l", extra=inertial() + plane))))
 
 
-def test_mesh_collides_as_a_small_box_with_a_warning():
+def test_mesh_is_kept_for_spawn_time():
     robot = parse_sdf_model(
         sdf(
             model(
@@ -343,8 +343,8 @@ def test_mesh_collides_as_a_small_box_with_a_warning():
             )
         )
     )
-    assert robot.links["a"].collisions[0].geometry == Box((0.02, 0.02, 0.02))
-    assert any("model://m/base.dae" in w and "not loaded" in w for w in robot.warnings)
+    # Issue 14: the mesh itself, read at spawn (test_meshes_and_worlds); it was a 2 cm box with a warning.
+    assert robot.links["a"].collisions[0].geometry == Mesh("model://m/base.dae", (2.0, 2.0, 2.0))
 
 
 def test_bare_model_plugins_and_missing_inertial():

@@ -8,8 +8,9 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 import ode
 
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, Pose, RobotModel, Sphere
+from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, Mesh, Pose, RobotModel, Sphere
 from turtle_sim_ode.physics import ode_constants as oc
+from turtle_sim_ode.physics.trimesh import MeshGeom, remove_geom
 from turtle_sim_ode.physics.world import PhysicsWorld, SurfaceParams
 
 Vec3 = Tuple[float, float, float]
@@ -152,7 +153,7 @@ def _remove_static_geoms(physics: PhysicsWorld, space: ode.SpaceBase, geoms: Dic
     for link_geoms in geoms.values():
         for geom in link_geoms:
             physics.unregister_geom(geom)
-            space.remove(geom)
+            remove_geom(space, geom)
 
 
 class BuiltModel:
@@ -386,7 +387,29 @@ def _create_geom(space: ode.SpaceBase, geometry: Geometry) -> ode.GeomObject:
         return ode.GeomCylinder(space, geometry.radius, geometry.length)
     if isinstance(geometry, Sphere):
         return ode.GeomSphere(space, geometry.radius)
+    if isinstance(geometry, Mesh):
+        if geometry.vertices is None or geometry.faces is None:
+            raise ModelError(f"mesh '{geometry.uri}' is not loaded (models.meshes.load_meshes reads it)")
+        return MeshGeom(space, geometry.vertices, geometry.faces)  # type: ignore[return-value]
     raise ModelError(f"unsupported geometry {geometry!r}")
+
+
+def _on_body(geometry: Geometry, robot: RobotModel, link: str) -> Tuple[Geometry, Transform]:
+    """The geometry a moving link's collision gets, and its centre in the collision frame: a mesh becomes the box
+    that bounds it (meshes are body-less, see physics.trimesh), with a warning."""
+    if not isinstance(geometry, Mesh):
+        return geometry, ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
+    if geometry.vertices is None:
+        raise ModelError(f"mesh '{geometry.uri}' is not loaded (models.meshes.load_meshes reads it)")
+    low = [min(v[axis] for v in geometry.vertices) for axis in range(3)]
+    high = [max(v[axis] for v in geometry.vertices) for axis in range(3)]
+    size = tuple(max(h - l, 1e-4) for l, h in zip(low, high))
+    centre = tuple((l + h) / 2 for l, h in zip(low, high))
+    robot.warnings.append(
+        f"link '{link}': mesh '{geometry.uri}' on a moving link collides as its bounding box "
+        f"{size[0]:.3g} x {size[1]:.3g} x {size[2]:.3g} m (meshes collide as meshes on static models)"
+    )
+    return Box(size), (centre, (1.0, 0.0, 0.0, 0.0))  # type: ignore[arg-type]
 
 
 def _surface_for(robot: RobotModel, link: str, default: SurfaceParams) -> SurfaceParams:
@@ -511,9 +534,10 @@ def build_model(
                 geoms[member] = []
                 surface = _surface_for(robot, member, physics.params.default_surface)
                 for collision in robot.links[member].collisions:
-                    geom = _create_geom(space, collision.geometry)
+                    geometry, centre = _on_body(collision.geometry, robot, member)
+                    geom = _create_geom(space, geometry)
                     geom.setBody(body)
-                    geom_offset = compose(offset, pose_transform(collision.origin))
+                    geom_offset = compose(compose(offset, pose_transform(collision.origin)), centre)
                     geom.setOffsetPosition(geom_offset[0])
                     geom.setOffsetQuaternion(geom_offset[1])
                     physics.register_geom(geom, surface)

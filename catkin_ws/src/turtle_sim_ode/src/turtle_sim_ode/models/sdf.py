@@ -17,7 +17,6 @@ from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pos
 from turtle_sim_ode.models.text import ModelError, child_text, parse_xml, read_number, read_optional_number
 from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
-    MESH_PLACEHOLDER_EDGE,
     Box,
     Collision,
     Cylinder,
@@ -41,6 +40,7 @@ from turtle_sim_ode.models.urdf import (
     _offset,
     _vec3,
     check_size,
+    mesh_geometry,
     read_surface_value,
 )
 
@@ -122,6 +122,8 @@ class WorldModel:
     name: str
     pose: Pose
     model: RobotModel
+    # The folder of the file the model came from (an <include>d model's), for its relative mesh names.
+    base: Optional[str] = None
 
     @property
     def spawn_pose(self) -> Tuple[float, float, float, float, float, float]:
@@ -307,16 +309,9 @@ def _parse_geometry(
             ((-half * normal[0], -half * normal[1], -half * normal[2]), _plane_to_z(normal)),
         )
     if shape.tag == "mesh":
-        scale = _vec3(child_text(shape, "scale"), f"{what} <scale>", (1.0, 1.0, 1.0))
-        size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
-        if min(size) <= 0:
-            raise ModelError(f"{what} <scale> must not be zero, got {scale}")
-        _offset(size, f"{what} placeholder box for <scale> {scale}")
-        warnings.append(
-            f"{what}: mesh '{child_text(shape, 'uri') or ''}' is not loaded; colliding "
-            f"with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead"
-        )
-        return Box(size), identity  # type: ignore[arg-type]
+        if shape.find("submesh") is not None:
+            warnings.append(f"{what}: <mesh><submesh> is not supported; the whole mesh collides")
+        return mesh_geometry(child_text(shape, "uri"), child_text(shape, "scale"), f"{what} <mesh>"), identity
     raise ModelError(f"{what}: unsupported geometry")
 
 
@@ -527,6 +522,25 @@ def parse_sdf_model(text: str) -> RobotModel:
     if len(models) != 1:
         raise ModelError(f"expected one <model> in <sdf>, found {len(models)}")
     return _parse_model(models[0], version)[0]
+
+
+def parse_included_model(text: str, name: Optional[str], static: Optional[bool]) -> Tuple[RobotModel, Pose]:
+    """An <include>d model file (``<sdf><model>``): the model, renamed to ``name`` and made ``static`` where the
+    <include> says so, and its own <pose>."""
+    root = parse_xml(text, "SDF")
+    models = root.findall("model") if root.tag == "sdf" else [root] if root.tag == "model" else []
+    if len(models) != 1:
+        raise ModelError(f"expected one <model> in the model file, found {len(models)}")
+    element = models[0]
+    if name is not None:
+        element.set("name", name)
+    if static is not None:
+        for old in element.findall("static"):
+            element.remove(old)
+        flag = Element("static")
+        flag.text = "true" if static else "false"
+        element.insert(0, flag)
+    return _parse_model(element, _version(root) if root.tag == "sdf" else BARE_MODEL_VERSION)
 
 
 def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:

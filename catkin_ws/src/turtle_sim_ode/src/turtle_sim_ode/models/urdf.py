@@ -22,8 +22,6 @@ MAX_LENGTH = 1e6
 MAX_MASS = 1e9
 MAX_INERTIA = 1e12
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
-# Stand-in for a mesh collision: mesh files are never opened, so their size is unknown.
-MESH_PLACEHOLDER_EDGE = 0.01
 # <gazebo reference="link"> contact tags -> GazeboSurface fields (Gazebo's ODE surface of the link's collisions).
 SURFACE_TAGS = {
     "mu1": "mu1",
@@ -79,7 +77,19 @@ class Sphere:
     radius: float
 
 
-Geometry = Union[Box, Cylinder, Sphere]
+@dataclass(frozen=True)
+class Mesh:
+    """A collision mesh: ``uri`` as the model text gives it (package://, model://, file:// or a path), scaled per
+    axis. The parsers open no file: models.meshes.load_meshes fills ``vertices`` and ``faces`` (ODE trimesh data,
+    scaled) from files under the ROS package path and model path before the model is built."""
+
+    uri: str
+    scale: Vec3 = (1.0, 1.0, 1.0)
+    vertices: Optional[Tuple[Vec3, ...]] = field(default=None, compare=False, repr=False)
+    faces: Optional[Tuple[Tuple[int, int, int], ...]] = field(default=None, compare=False, repr=False)
+
+
+Geometry = Union[Box, Cylinder, Sphere, Mesh]
 
 
 @dataclass(frozen=True)
@@ -200,6 +210,17 @@ def _vec3(text: Optional[str], what: str, default: Vec3) -> Vec3:
     return (read_number(parts[0], what), read_number(parts[1], what), read_number(parts[2], what))
 
 
+def mesh_geometry(uri: Optional[str], scale_text: Optional[str], what: str) -> Mesh:
+    """A <mesh> collision (no file opened); ModelError without a URI or with a zero or huge scale."""
+    if uri is None or not uri.strip():
+        raise ModelError(f"{what}: needs a file name (URI)")
+    scale = _vec3(scale_text, f"{what} scale", (1.0, 1.0, 1.0))
+    for value in scale:
+        if value == 0 or abs(value) > MAX_LENGTH:
+            raise ModelError(f"{what} scale must be non-zero and at most {MAX_LENGTH:g}, got {scale}")
+    return Mesh(uri.strip(), scale)
+
+
 def _bounded(value: float, limit: float, what: str) -> float:
     """``value`` unless its magnitude exceeds ``limit``."""
     if abs(value) > limit:
@@ -296,15 +317,7 @@ def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) 
     if shape.tag == "sphere":
         return Sphere(_positive(read_number(shape.get("radius"), f"{what} sphere radius"), f"{what} sphere radius"))
     if shape.tag == "mesh":
-        scale = _vec3(shape.get("scale"), f"{what} mesh scale", (1.0, 1.0, 1.0))
-        size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
-        for value in size:
-            _positive(value, f"{what} placeholder box for mesh scale {scale}")
-        warnings.append(
-            f"{what}: mesh '{shape.get('filename', '')}' is not loaded; "
-            f"colliding with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead"
-        )
-        return Box(size)  # type: ignore[arg-type]
+        return mesh_geometry(shape.get("filename"), shape.get("scale"), f"{what} mesh")
     raise ModelError(f"{what}: unsupported geometry <{shape.tag}>")
 
 

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import math
 from dataclasses import dataclass, field, replace
 from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequence, Set, Tuple
@@ -11,6 +10,9 @@ import ode
 
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.contact_kernel import ContactKernel
+from turtle_sim_ode.physics.trimesh import LIBODE as _LIBODE
+from turtle_sim_ode.physics.trimesh import collide as _collide
+from turtle_sim_ode.physics.trimesh import remove_geom
 
 SOLVERS = ("quick", "world")
 # Gravity (m/s² per axis) beyond which resting bodies tunnel through the ground and fall until ODE aborts (1e6 does).
@@ -41,20 +43,6 @@ MIN_FDIR1_LENGTH = 1e-6
 # crashes. Worlds are therefore kept for the life of the process (a few hundred bytes
 # each); bodies, joints and geoms are still freed with their wrappers.
 _WORLDS_KEPT_ALIVE: List[ode.World] = []
-
-
-def _libode() -> Optional[ctypes.CDLL]:
-    """The libode that PyODE is linked against (already loaded, so the same globals), if it can be found."""
-    for name in ("libode.so.8", ctypes.util.find_library("ode")):
-        if name:
-            try:
-                return ctypes.CDLL(name)
-            except OSError:
-                continue
-    return None
-
-
-_LIBODE = _libode()
 
 
 def seed_ode_random(seed: int = 0) -> bool:
@@ -405,7 +393,7 @@ class PhysicsWorld:
         """Unregister and remove every geom of ``space``, then the space itself."""
         for geom in [space.getGeom(i) for i in range(space.getNumGeoms())]:
             self.unregister_geom(geom)
-            space.remove(geom)
+            remove_geom(space, geom)
         if space in self._self_colliding:
             self._self_colliding.remove(space)
             self._kernel_stale = True
@@ -564,7 +552,7 @@ class PhysicsWorld:
         ground = self.ground
         watched = self._watched
         ground_watched = ground in watched
-        collide = ode.collide
+        collide = _collide
         for geom, body, pair in self._ground_tests:
             contacts = collide(ground, geom)
             if contacts:
@@ -585,7 +573,7 @@ class PhysicsWorld:
         body2 = geom2.getBody()
         if body1 is body2 or (body1, body2) in self._jointed:
             return
-        contacts = ode.collide(geom1, geom2)
+        contacts = _collide(geom1, geom2)
         if contacts:
             if self._watched:
                 self._record_contacts(contacts, geom1, geom2)
@@ -646,6 +634,6 @@ class PhysicsWorld:
             contact.setSoftCFM(cfm)
             contact.setSlip1(slip1)
             contact.setSlip2(slip2)
-            joint = ode.ContactJoint(world, None, contact)
+            joint = ode.ContactJoint(world, None, getattr(contact, "ode_contact", contact))
             joint.attach(body1, body2)
             keep(joint)
