@@ -140,3 +140,26 @@ def test_turtlebot2_keeps_its_links_min_depth():
     for _ in range(1000):
         sim.step()
     assert sim.models["mobile_base"].link_pose("base_footprint")[0][2] == pytest.approx(-0.001, abs=2e-4)
+
+
+def test_tags_that_are_not_simulated_are_named_in_warnings():
+    urdf = BURGER_URDF.replace(
+        '<gazebo reference="caster_back_link">',
+        '<gazebo reference="caster_back_link"><material>Gazebo/FlatBlack</material><selfCollide>true</selfCollide>'
+        "<dampingFactor>0.1</dampingFactor>",
+    ).replace("</robot>", "<gazebo><static>false</static></gazebo></robot>")
+    warnings = parse_urdf(urdf).warnings
+    assert "<gazebo reference='caster_back_link'> <selfCollide> is not simulated, ignored" in warnings
+    assert "<gazebo reference='caster_back_link'> <dampingFactor> is not simulated, ignored" in warnings
+    assert "<gazebo> <static> is not simulated, ignored" in warnings
+    assert not any("material" in warning for warning in warnings)  # drawing only
+    assert parse_urdf(BURGER_URDF).warnings == []
+    robot = parse_sdf_model(
+        _sdf_link(
+            "<bounce><restitution_coefficient>0.5</restitution_coefficient></bounce><friction><ode><mu>1</mu>"
+        ).replace("</surface>", "</ode><torsional><coefficient>1</coefficient></torsional></friction></surface>")
+    )
+    assert robot.warnings == [
+        "link 'wheel' collision 'c' <surface> <bounce/restitution_coefficient> is not simulated, ignored",
+        "link 'wheel' collision 'c' <surface> <friction/torsional/coefficient> is not simulated, ignored",
+    ]

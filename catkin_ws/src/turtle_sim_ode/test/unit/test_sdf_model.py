@@ -553,3 +553,10 @@ def test_world_errors():
         parse_sdf_world(
             sdf('<world name="w"><physics type="ode"><ode><solver><type>pgs</type>' "</solver></ode></physics></world>")
         )
+
+
+def test_a_world_without_gravity_gets_sdfs_default():
+    """Issue 14: SDF's -9.8 as Gazebo gives it, not the simulator's own -9.81; a given <gravity> wins."""
+    assert parse_sdf_world(sdf('<world name="w"></world>')).physics.apply(PhysicsParams()).gravity == (0, 0, -9.8)
+    given = parse_sdf_world(sdf('<world name="w"><gravity>0 0 -9.81</gravity></world>'))
+    assert given.physics.apply(PhysicsParams()).gravity == (0.0, 0.0, -9.81)

@@ -73,6 +73,8 @@ SURFACE_PATHS = {
 }
 # <world> children that change nothing the simulator models.
 SILENT_WORLD_TAGS = ("light", "scene", "gui", "atmosphere", "spherical_coordinates", "magnetic_field", "wind", "audio")
+# <gravity> when a world has none: SDF's default (sdformat's world.sdf).
+SDF_GRAVITY: Vec3 = (0.0, 0.0, -9.8)
 GROUND_PLANE_URI = "model://ground_plane"
 SUN_URI = "model://sun"
 # Gazebo's own inline copy of its ground plane (worlds saved from the GUI contain one).
@@ -315,9 +317,26 @@ def _parse_geometry(
     raise ModelError(f"{what}: unsupported geometry")
 
 
-def _parse_surface(element: Optional[Element], what: str) -> Dict[str, Any]:
+# <surface> entries that are read (SURFACE_PATHS) or that hold only their parents' defaults.
+_SURFACE_CONTAINERS = {"friction", "friction/ode", "contact", "contact/ode"}
+
+
+def _surface_leaves(element: Element, prefix: str = "") -> List[str]:
+    paths = []
+    for child in element:
+        path = f"{prefix}{child.tag}"
+        paths.extend(_surface_leaves(child, path + "/") if len(child) else [path])
+    return paths
+
+
+def _parse_surface(element: Optional[Element], what: str, warnings: Optional[List[str]] = None) -> Dict[str, Any]:
     if element is None:
         return {}
+    if warnings is not None:
+        read = set(SURFACE_PATHS.values()) | _SURFACE_CONTAINERS
+        for path in _surface_leaves(element):
+            if path not in read:
+                warnings.append(f"{what} <surface> <{path}> is not simulated, ignored")
     values = {}
     for key, path in SURFACE_PATHS.items():
         text = child_text(element, path)
@@ -342,7 +361,7 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
         link.collisions.append(
             Collision(collision_name, _as_pose(compose(pose_transform(_pose(collision, where)), offset)), geometry)
         )
-        values = _parse_surface(collision.find("surface"), where)
+        values = _parse_surface(collision.find("surface"), where, model.warnings)
         if any(surface.get(key, value) != value for key, value in values.items()):
             model.warnings.append(
                 f"{what}: its collisions have different <surface> values; "
@@ -573,7 +592,8 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
         erp=_optional_float(chosen, "ode/constraints/erp", what),
         contact_max_correcting_vel=_optional_float(chosen, "ode/constraints/contact_max_correcting_vel", what),
         contact_surface_layer=_optional_float(chosen, "ode/constraints/contact_surface_layer", what),
-        gravity=None if gravity_text is None else _vec3(gravity_text, "<gravity>", (0.0, 0.0, 0.0)),
+        # SDF's default, as Gazebo gives a world without <gravity> (not the simulator's own -9.81).
+        gravity=SDF_GRAVITY if gravity_text is None else _vec3(gravity_text, "<gravity>", (0.0, 0.0, 0.0)),
     )
 
 

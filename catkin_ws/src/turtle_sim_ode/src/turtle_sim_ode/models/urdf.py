@@ -385,9 +385,17 @@ def _tag_value(element: Element) -> Optional[str]:
     return text.strip() if text is not None else None
 
 
+# <gazebo> children that change only what Gazebo draws: read silently.
+VISUAL_TAGS = ("material", "visual")
+
+
 def _parse_gazebo(element: Element, model: RobotModel) -> None:
     reference = element.get("reference")
     model.sensors.extend(SensorElement(reference, sensor) for sensor in element.findall("sensor"))
+    known = ("sensor", "plugin") + VISUAL_TAGS + (tuple(SURFACE_TAGS) if reference is not None else ())
+    where = f"<gazebo reference='{reference}'>" if reference is not None else "<gazebo>"
+    for tag in dict.fromkeys(child.tag for child in element if child.tag not in known):
+        model.warnings.append(f"{where} <{tag}> is not simulated, ignored")
     if reference is None:
         for plugin in element.findall("plugin"):
             model.plugins.append(
