@@ -31,7 +31,10 @@ def _drive_burger(urdf: str, kernel: bool = True):
     """Settle 1 s, drive straight at SPEED for 5 s; (distance driven, base_footprint heights, trace of poses)."""
     seed_ode_random()
     sim = Simulation(contact_kernel=kernel)
-    assert sim.load_world(parse_sdf_world(TB3_WORLD)) == []
+    assert sim.load_world(parse_sdf_world(TB3_WORLD)) == [
+        "<physics> <ode/solver/use_dynamic_moi_rescaling> 1 is not simulated, ignored"
+    ]
+    assert sim.physics.params.sor == 1.4
     sim.spawn_urdf("burger", urdf)
     robot, model = sim.robots["burger"], sim.models["burger"]
     robot.params.cmd_timeout = 0.0

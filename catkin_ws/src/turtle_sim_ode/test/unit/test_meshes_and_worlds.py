@@ -22,7 +22,7 @@ from turtle_sim_ode.models.resources import MAX_RESOURCE_BYTES, ResourceError, R
 from turtle_sim_ode.models.sdf import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import Mesh, parse_urdf
-from turtle_sim_ode.physics.trimesh import MeshGeom
+from turtle_sim_ode.physics.trimesh import MeshGeom, quickstep_w
 from turtle_sim_ode.physics.world import seed_ode_random
 from turtle_sim_ode.sensors.laser import LaserScanner
 from turtle_sim_ode.world.simulation import Simulation
@@ -69,6 +69,7 @@ def test_model_includes_are_resolved_through_the_model_path():
     assert (x0, x1) == pytest.approx((ROOM_X - outer, ROOM_X + outer), abs=1e-6)  # the include's pose
     assert (y0, y1, z0, z1) == pytest.approx((-outer, outer, 0.0, 0.3), abs=1e-6)
     assert sim.physics.params.solver_iterations == 150  # TurtleBot3's physics block
+    assert sim.physics.params.sor == 1.4 and quickstep_w(sim.physics.world) == 1.4
 
 
 def test_include_name_static_and_pose_override_the_models_own():

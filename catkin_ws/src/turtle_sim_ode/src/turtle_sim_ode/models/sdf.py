@@ -95,6 +95,7 @@ class SdfPhysics:
     contact_max_correcting_vel: Optional[float] = None
     contact_surface_layer: Optional[float] = None
     gravity: Optional[Vec3] = None
+    sor: Optional[float] = None
 
     def apply(self, params: PhysicsParams) -> PhysicsParams:
         """A copy of ``params`` with the values this world sets (real-time pacing is the
@@ -108,6 +109,7 @@ class SdfPhysics:
             "contact_max_correcting_vel": self.contact_max_correcting_vel,
             "contact_surface_layer": self.contact_surface_layer,
             "gravity": self.gravity,
+            "sor": self.sor,
         }
         result = replace(params, **{k: v for k, v in given.items() if v is not None})
         try:
@@ -582,6 +584,9 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
     step = _optional_float(chosen, "max_step_size", what)
     if step is not None and step <= 0:
         raise ModelError(f"{what} <max_step_size> must be > 0, got {step}")
+    for path, idle in (("ode/solver/precon_iters", "0"), ("ode/solver/use_dynamic_moi_rescaling", "0")):
+        if child_text(chosen, path) not in (None, idle, "false"):
+            warnings.append(f"{what} <{path}> {child_text(chosen, path)} is not simulated, ignored")
     return SdfPhysics(
         max_step_size=step,
         real_time_factor=_optional_float(chosen, "real_time_factor", what),
@@ -592,6 +597,7 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
         erp=_optional_float(chosen, "ode/constraints/erp", what),
         contact_max_correcting_vel=_optional_float(chosen, "ode/constraints/contact_max_correcting_vel", what),
         contact_surface_layer=_optional_float(chosen, "ode/constraints/contact_surface_layer", what),
+        sor=_optional_float(chosen, "ode/solver/sor", what),
         # SDF's default, as Gazebo gives a world without <gravity> (not the simulator's own -9.81).
         gravity=SDF_GRAVITY if gravity_text is None else _vec3(gravity_text, "<gravity>", (0.0, 0.0, 0.0)),
     )

@@ -58,6 +58,10 @@ def _declare(lib: Optional[ctypes.CDLL]) -> Optional[ctypes.CDLL]:
         "dGeomGetPosition": (ctypes.POINTER(ctypes.c_double), [p]),
         "dGeomGetQuaternion": (None, [p, ctypes.POINTER(ctypes.c_double)]),
         "dGeomGetAABB": (None, [p, ctypes.POINTER(ctypes.c_double)]),
+        "dGeomGetBody": (p, [p]),
+        "dBodyGetWorld": (p, [p]),
+        "dWorldSetQuickStepW": (None, [p, ctypes.c_double]),
+        "dWorldGetQuickStepW": (ctypes.c_double, [p]),
         "dCollide": (i, [p, p, i, ctypes.POINTER(_ContactGeom), i]),
     }
     for name, (restype, argtypes) in signatures.items():
@@ -69,6 +73,26 @@ def _declare(lib: Optional[ctypes.CDLL]) -> Optional[ctypes.CDLL]:
 
 _ODE = _declare(_libode())  # a handle of its own: its function signatures are set here
 _POINTS = (_ContactGeom * MAX_POINTS)()
+
+
+def world_id(world: ode.World) -> int:
+    """The dWorldID of a PyODE World, which gives none: through a probe body's geom."""
+    body = ode.Body(world)
+    probe = ode.GeomSphere(None, 1.0)
+    probe.setBody(body)
+    found = _ODE.dBodyGetWorld(_ODE.dGeomGetBody(probe._id()))
+    probe.setBody(None)
+    return found
+
+
+def set_quickstep_w(world: ode.World, w: float) -> None:
+    """ODE's dWorldSetQuickStepW (Gazebo's <sor>), which PyODE does not bind; nothing without libode."""
+    if _ODE is not None:
+        _ODE.dWorldSetQuickStepW(world_id(world), float(w))
+
+
+def quickstep_w(world: ode.World) -> float:
+    return _ODE.dWorldGetQuickStepW(world_id(world))
 
 
 def available() -> bool:

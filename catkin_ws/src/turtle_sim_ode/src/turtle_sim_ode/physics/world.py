@@ -12,7 +12,7 @@ from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.contact_kernel import ContactKernel
 from turtle_sim_ode.physics.trimesh import LIBODE as _LIBODE
 from turtle_sim_ode.physics.trimesh import collide as _collide
-from turtle_sim_ode.physics.trimesh import remove_geom
+from turtle_sim_ode.physics.trimesh import remove_geom, set_quickstep_w
 
 SOLVERS = ("quick", "world")
 # Gravity (m/s² per axis) beyond which resting bodies tunnel through the ground and fall until ODE aborts (1e6 does).
@@ -159,6 +159,7 @@ def configure_world(world: ode.World, params: "PhysicsParams") -> None:
     world.setQuickStepNumIterations(params.solver_iterations)
     world.setContactMaxCorrectingVel(params.contact_max_correcting_vel)
     world.setContactSurfaceLayer(params.contact_surface_layer)
+    set_quickstep_w(world, params.sor)
 
 
 @dataclass
@@ -176,6 +177,8 @@ class PhysicsParams:
     # at up to this speed), lower lets soft contacts sink under load (force <= cap / cfm).
     contact_max_correcting_vel: float = 0.1
     contact_surface_layer: float = 0.0001
+    # The quick step's successive over-relaxation factor (Gazebo's <sor>, ODE's dWorldSetQuickStepW; ODE's own 1.3).
+    sor: float = 1.3
     default_surface: SurfaceParams = field(default_factory=SurfaceParams)
     # Gazebo's ground_plane model surface.
     ground_surface: SurfaceParams = field(default_factory=lambda: SurfaceParams(mu=100.0, mu2=50.0))
@@ -208,6 +211,8 @@ class PhysicsParams:
             value = getattr(self, name)
             if not _finite(value) or value < 0:
                 raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
+        if not _finite(self.sor) or not 0 < self.sor <= 2:
+            raise ValueError(f"sor must be in (0, 2], got {self.sor!r}")
         self.default_surface.validate("default_surface")
         self.ground_surface.validate("ground_surface")
 
