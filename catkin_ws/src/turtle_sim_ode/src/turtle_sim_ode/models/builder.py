@@ -59,6 +59,16 @@ def quat_matrix(q: Quat) -> Matrix3:
     return tuple(tuple(columns[c][r] for c in range(3)) for r in range(3))  # type: ignore[return-value]
 
 
+def rpy_of(q: Quat) -> Vec3:
+    """Fixed-axis roll, pitch, yaw of a quaternion (inverse of quat_from_rpy)."""
+    m = quat_matrix(q)
+    cos_pitch = math.hypot(m[0][0], m[1][0])
+    pitch = math.atan2(-m[2][0], cos_pitch)
+    if cos_pitch < 1e-9:  # gimbal lock: only roll and yaw together are defined; all in yaw
+        return (0.0, pitch, math.atan2(-m[0][1], m[1][1]))
+    return (math.atan2(m[2][1], m[2][2]), pitch, math.atan2(m[1][0], m[0][0]))
+
+
 def compose(a: Transform, b: Transform) -> Transform:
     moved = quat_rotate(a[1], b[0])
     return ((a[0][0] + moved[0], a[0][1] + moved[1], a[0][2] + moved[2]), quat_multiply(a[1], b[1]))

@@ -13,7 +13,16 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Dict, List, Optional, Set, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
+from turtle_sim_ode.models.builder import (
+    Quat,
+    Transform,
+    compose,
+    inverse,
+    pose_transform,
+    quat_rotate,
+    rpy_of,
+)
+from turtle_sim_ode.models.nested import flatten_nested_models, read_pose
 from turtle_sim_ode.models.text import ModelError, child_text, parse_xml, read_number, read_optional_number
 from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
@@ -161,14 +170,7 @@ class World:
 
 
 # --- small helpers ------------------------------------------------------------------
-def _rpy(q: Quat) -> Vec3:
-    """Fixed-axis roll, pitch, yaw of a quaternion (inverse of quat_from_rpy)."""
-    m = quat_matrix(q)
-    cos_pitch = math.hypot(m[0][0], m[1][0])
-    pitch = math.atan2(-m[2][0], cos_pitch)
-    if cos_pitch < 1e-9:  # gimbal lock: only roll and yaw together are defined; all in yaw
-        return (0.0, pitch, math.atan2(-m[0][1], m[1][1]))
-    return (math.atan2(m[2][1], m[2][2]), pitch, math.atan2(m[1][0], m[0][0]))
+_rpy = rpy_of  # the name world.simulation imports
 
 
 def _as_pose(transform: Transform) -> Pose:
@@ -201,23 +203,7 @@ def _required(element: Element, attribute: str, what: str) -> str:
     return value
 
 
-def _pose(element: Element, what: str) -> Pose:
-    """The <pose> child: "x y z roll pitch yaw" relative to the default frame."""
-    pose = element.find("pose")
-    if pose is None:
-        return Pose()
-    for attribute in ("relative_to", "frame"):
-        if pose.get(attribute):
-            raise ModelError(
-                f"{what} <pose {attribute}='{pose.get(attribute)}'>: only poses " f"in the default frame are supported"
-            )
-    parts = (pose.text or "").split()
-    if not parts:
-        return Pose()
-    if len(parts) != 6:
-        raise ModelError(f"{what} <pose>: expected 6 numbers, got {pose.text!r}")
-    values = [read_number(p, f"{what} <pose>") for p in parts]
-    return Pose(_offset((values[0], values[1], values[2]), f"{what} <pose> x y z"), (values[3], values[4], values[5]))
+_pose = read_pose
 
 
 def _plugin(element: Element, what: str) -> GazeboPlugin:
@@ -462,9 +448,9 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
     """The model and its own <pose>."""
     name = _required(element, "name", "<model>")
     what = f"model '{name}'"
-    for nested in ("model", "include"):
-        if element.find(nested) is not None:
-            raise ModelError(f"{what}: nested <{nested}> is not supported")
+    if element.find("include") is not None:
+        raise ModelError(f"{what}: an <include> inside a model is not supported")
+    flatten_nested_models(element, what)
     static = _bool(element, "static", what, False)
     link_elements, joint_elements = element.findall("link"), element.findall("joint")
     if not link_elements:
