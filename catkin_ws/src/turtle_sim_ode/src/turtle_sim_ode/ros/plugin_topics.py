@@ -360,8 +360,9 @@ class LaserPublisher(Periodic):
         super().__init__(1.0 / config.update_rate)
         self._scanner = scanner
         self._pub = PackedPublisher(plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan)
+        # gazebo_ros_laser resolves its frameName with the tf_prefix as GazeboRos does (tf_prefix, else namespace).
         self._packer = LaserScanPacker(
-            scanner.frame,
+            resolve_frame(tf_prefix(namespace or config.robot_namespace), scanner.frame),
             angle_min=config.min_angle,
             angle_max=config.max_angle,
             angle_increment=config.angle_increment,
