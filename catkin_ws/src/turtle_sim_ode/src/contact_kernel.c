@@ -2,6 +2,7 @@
  * _merge_line_contact / _record_contacts in physics.py: keep them in step. */
 #include "turtle_sim_ode/contact_kernel.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +12,9 @@ enum
 {
   kMaxPointsPerPair = 150
 };
+
+/* physics.world.MIN_FDIR1_LENGTH */
+static const double kMinFdir1Length = 1e-6;
 
 typedef struct
 {
@@ -112,7 +116,7 @@ static int replace(void** target, const void* items, int count, size_t size)
 TsoContactKernel* tso_kernel_create(void)
 {
   TsoContactKernel* kernel = (TsoContactKernel*)calloc(1, sizeof(TsoContactKernel));
-  static const TsoPairSurface kNoFriction = { 0, 0.0, 0.0, 0.0, 0.0 };
+  static const TsoPairSurface kNoFriction; /* all zero */
   if (kernel == NULL)
     return NULL;
   kernel->joints = dJointGroupCreate(0);
@@ -280,9 +284,32 @@ static int merge_line_contact(dContactGeom* points)
   return 1;
 }
 
-/* As physics._add_contacts: one contact joint per point, between body1 and body2 (either may be 0). */
+/* As physics.world._friction_direction: fdir1 turned by the geom's rotation, projected onto the contact plane and
+ * made unit length into out; 0 where it is (nearly) along the normal. */
+static int friction_direction(dGeomID geom, const double* fdir1, const dReal* normal, dReal* out)
+{
+  const dReal* r = dGeomGetRotation(geom); /* rows of 4 */
+  double x = fdir1[0], y = fdir1[1], z = fdir1[2];
+  double wx = r[0] * x + r[1] * y + r[2] * z;
+  double wy = r[4] * x + r[5] * y + r[6] * z;
+  double wz = r[8] * x + r[9] * y + r[10] * z;
+  double along = wx * normal[0] + wy * normal[1] + wz * normal[2];
+  double tx = wx - along * normal[0];
+  double ty = wy - along * normal[1];
+  double tz = wz - along * normal[2];
+  double length = sqrt(tx * tx + ty * ty + tz * tz);
+  if (!(length > kMinFdir1Length))
+    return 0;
+  out[0] = tx / length;
+  out[1] = ty / length;
+  out[2] = tz / length;
+  return 1;
+}
+
+/* As physics._add_contacts: one contact joint per point, between body1 and body2 (either may be 0); geom1 and
+ * geom2 are the pair in the order its surface was looked up. */
 static void add_contacts(TsoContactKernel* kernel, dContactGeom* points, int count, dBodyID body1, dBodyID body2,
-                         const TsoPairSurface* surface, int merge_line)
+                         const TsoPairSurface* surface, int merge_line, dGeomID geom1, dGeomID geom2)
 {
   dWorldID world = dBodyGetWorld(body1 != NULL ? body1 : body2);
   int i;
@@ -299,13 +326,27 @@ static void add_contacts(TsoContactKernel* kernel, dContactGeom* points, int cou
     dContact contact;
     dJointID joint;
     memset(&contact, 0, sizeof(contact));
+    contact.geom = points[i];
     contact.surface.mode = surface->mode;
+    if (surface->adjust_depth)
+    {
+      double depth = contact.geom.depth - surface->min_depth;
+      if (depth > surface->depth_cap)
+        depth = surface->depth_cap;
+      contact.geom.depth = depth + surface->surface_layer;
+    }
+    if (surface->fdir_side != 0 &&
+        friction_direction(surface->fdir_side == 1 ? geom1 : geom2, surface->fdir1, contact.geom.normal, contact.fdir1))
+    {
+      contact.surface.mode |= dContactFDir1;
+    }
     contact.surface.mu = surface->mu;
     contact.surface.mu2 = surface->mu2;
     contact.surface.bounce = 0.1; /* PyODE's Contact default (no effect without dContactBounce) */
     contact.surface.soft_erp = surface->soft_erp;
     contact.surface.soft_cfm = surface->soft_cfm;
-    contact.geom = points[i];
+    contact.surface.slip1 = surface->slip1;
+    contact.surface.slip2 = surface->slip2;
     joint = dJointCreateContact(world, kernel->joints, &contact);
     dJointAttach(joint, body1, body2);
     ++kernel->joint_count;
@@ -343,7 +384,8 @@ static void near_callback(void* data, dGeomID a, dGeomID b)
   {
     if (kernel->any_watched)
       record_contacts(kernel, points, count, a, b);
-    add_contacts(kernel, points, count, body_a, body_b, pair_surface(kernel, a, b), is_cylinder(a) || is_cylinder(b));
+    add_contacts(kernel, points, count, body_a, body_b, pair_surface(kernel, a, b), is_cylinder(a) || is_cylinder(b), a,
+                 b);
   }
 }
 
@@ -363,7 +405,7 @@ int tso_kernel_collide(TsoContactKernel* kernel)
       if (kernel->any_watched)
         record_contacts(kernel, points, count, kernel->ground, geom);
       add_contacts(kernel, points, count, NULL, dGeomGetBody(geom), pair_surface(kernel, kernel->ground, geom),
-                   is_cylinder(geom));
+                   is_cylinder(geom), kernel->ground, geom);
     }
   }
   if (kernel->top != NULL && dSpaceGetNumGeoms(kernel->top) > 1)

@@ -39,8 +39,14 @@ class BurgerDrive(unittest.TestCase):
         self.assertAlmostEqual(speed, wanted, delta=wanted * rospy.get_param("~tolerance"))
         odom = rospy.wait_for_message("/odom", Odometry, timeout=10)
         self.assertEqual((odom.header.frame_id, odom.child_frame_id), ("odom", "base_footprint"))
+        # gazebo_ros_diff_drive's covariances (issue 14): x, y, yaw measured, z, roll, pitch unknown; no twist ones.
+        diagonal = [odom.pose.covariance[7 * i] for i in range(6)]
+        self.assertEqual(diagonal, [1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3])
+        self.assertEqual(sum(abs(value) for value in odom.pose.covariance), sum(diagonal))
+        self.assertEqual(list(odom.twist.covariance), [0.0] * 36)
         joints = rospy.wait_for_message("/joint_states", JointState, timeout=10)
         self.assertEqual(joints.name, ["wheel_left_joint", "wheel_right_joint"])
+        self.assertEqual(joints.header.frame_id, "")  # gazebo_ros_diff_drive sets none
 
     def test_b_imu_plugin_publishes(self):
         messages = []

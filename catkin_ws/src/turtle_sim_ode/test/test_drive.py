@@ -83,6 +83,7 @@ class DriveThroughRos(unittest.TestCase):
         odom = self.odom.wait_newer(later)
         joints = self.joints.wait_newer(odom.header.stamp - rospy.Duration(0.001))
         self.assertEqual(joints.name, ["wheel_left_joint", "wheel_right_joint"])
+        self.assertEqual(joints.header.frame_id, "base_link")  # kobuki_gazebo_plugins: resolveTF("base_link")
         self.assertEqual((odom.header.frame_id, odom.child_frame_id), ("odom", "base_footprint"))
         transform = self.tf_buffer.lookup_transform("odom", "base_footprint", odom.header.stamp, rospy.Duration(5))
         self.assertAlmostEqual(transform.transform.translation.x, odom.pose.pose.position.x, places=9)

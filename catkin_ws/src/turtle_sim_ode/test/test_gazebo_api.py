@@ -89,13 +89,15 @@ class GazeboApi(unittest.TestCase):
         self.refused(self.spawn("external", xml=external))
         self.assertNotIn("truncated", self.get_world_properties().model_names)
 
-    def test_mesh_is_a_box_with_a_warning(self):
+    def test_mesh_outside_the_package_path_is_refused_naming_it(self):
+        # Issue 14: meshes are read, from under the ROS package path and model path only (it was a 1 cm box).
         mesh = self.box.replace(
             '<box size="0.2 0.2 0.2"/></geometry></collision>',
             '<mesh filename="file:///etc/passwd"/></geometry></collision>',
         )
-        result = self.spawned("mesh_box", xml=mesh, at=pose(2, 2, 0.1))
-        self.assertIn("mesh", result.status_message)
+        self.refused(
+            self.spawn("mesh_box", xml=mesh, at=pose(2, 2, 0.1)), "/etc/passwd", "outside the ROS package path"
+        )
 
     def test_delete_unknown_model(self):
         self.refused(self.delete_model("no_such_model"), "no_such_model")

@@ -15,11 +15,15 @@ extern "C"
 {
 #endif
 
-  /* One combined surface of a geom pair, as set on each of its contacts. */
+  /* One combined surface of a geom pair, as set on each of its contacts (physics.world.ContactSurface).
+   * fdir_side: whose fdir1 (in that geom's frame) is the first friction direction: 0 none, 1 the pair's first geom,
+   * 2 its second. adjust_depth: each contact's depth becomes min(depth - min_depth, depth_cap) + surface_layer, so
+   * that ODE acts with the pair's min_depth and max_vel instead of the world's. */
   typedef struct
   {
-    int mode;
-    double mu, mu2, soft_erp, soft_cfm;
+    int mode, fdir_side, adjust_depth;
+    double mu, mu2, soft_erp, soft_cfm, slip1, slip2, min_depth, depth_cap, surface_layer;
+    double fdir1[3];
   } TsoPairSurface;
 
   /* A contact point touching a watched geom, before contact joints are made; the normal points from other to geom. */

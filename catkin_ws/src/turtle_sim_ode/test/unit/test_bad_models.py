@@ -164,7 +164,7 @@ def urdf_with(inertia='ixx="0.01" iyy="0.01" izz="0.01"', collision=COLLISION, m
             urdf_with(
                 collision='<collision><geometry><mesh filename="m.dae" scale="1e10 1 1"/></geometry></collision>'
             ),
-            "placeholder box for mesh scale",
+            "mesh scale must be non-zero and at most",
         ),
         (
             '<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="fixed"><parent link="a"/>'
@@ -203,7 +203,9 @@ def test_absurd_sdf_numbers_are_refused(replace, message):
         parse_sdf_model(SDF_BOX.replace(*replace))
 
 
-def test_mesh_files_are_never_opened(monkeypatch, tmp_path):
+def test_mesh_files_are_never_opened_by_the_parsers_and_not_without_roots(monkeypatch, tmp_path):
+    """Parsing opens nothing; spawning reads meshes only through Simulation.resources (issue 14: none here, so the
+    spawn is refused naming the file; test_meshes_and_worlds reads them from the roots)."""
     fifo = tmp_path / "mesh.stl"
     os.mkfifo(fifo)  # opening it for reading would block: a regression hangs here rather than passing
 
@@ -218,10 +220,12 @@ def test_mesh_files_are_never_opened(monkeypatch, tmp_path):
     )
     urdf = f'<robot name="meshy"><link name="a">{INERTIAL}{meshes}</link></robot>'
     sim = Simulation()
-    warnings = sim.spawn_urdf("meshy", urdf)
+    with pytest.raises(ModelError, match=f"mesh 'file://{fifo}'.*no ROS package path"):
+        sim.spawn_urdf("meshy", urdf)
     sdf = SDF_BOX.replace("<box><size>0.2 0.2 0.2</size></box>", f"<mesh><uri>file://{fifo}</uri></mesh>")
-    warnings += sim.spawn_sdf("meshy_sdf", sdf, (1, 0, 0, 0, 0, 0))
-    assert len(warnings) == 3 and all("is not loaded" in warning for warning in warnings)
+    with pytest.raises(ModelError, match="no ROS package path"):
+        sim.spawn_sdf("meshy_sdf", sdf, (1, 0, 0, 0, 0, 0))
+    assert sim.models == {}
 
 
 # --- world requests --------------------------------------------------------------------------------------

@@ -163,3 +163,52 @@ def test_watched_contacts_are_the_last_steps_whenever_read(kernel):
     assert late.contacts == []  # not there during the step
     physics.step()
     assert len(late.contacts) == len(kept.contacts) == 1
+
+
+def _gazebo_surfaces(kernel: bool) -> Trace:
+    """Per-link Gazebo surfaces on every pair kind: a wheel-like cylinder with fdir1 (turned as it rolls), min_depth
+    and max_vel; a box with slip and a lower max_vel than the world's; a sphere with fdir1 and the smaller mu1
+    against the box's; body-less table with min_depth (ignored: no body), in a world with a 1 cm surface layer."""
+    seed_ode_random()
+    params = PhysicsParams(contact_surface_layer=0.01, contact_max_correcting_vel=2000.0, solver_iterations=150)
+    physics = PhysicsWorld(params, contact_kernel=kernel)
+    table = ode.GeomBox(physics.static_space, (1.0, 1.0, 0.2))
+    table.setPosition((0.6, 0.0, 0.1))
+    physics.register_geom(table, SurfaceParams(mu=0.5, min_depth=0.05))
+    bodies = []
+    names = {physics.ground: "ground", table: "table"}
+
+    def add(geom, position, surface, velocity=(0.0, 0.0, 0.0)):
+        body = ode.Body(physics.world)
+        mass = ode.Mass()
+        mass.setSphereTotal(1.0, 0.1)
+        body.setMass(mass)
+        body.setPosition(position)
+        body.setQuaternion((0.96, 0.1, 0.2, 0.1))
+        body.setLinearVel(velocity)
+        geom.setBody(body)
+        physics.register_geom(geom, surface)
+        bodies.append(body)
+        names[geom] = "geom %d" % len(bodies)
+        return geom
+
+    space = physics.create_model_space(self_collide=True)
+    wheel = SurfaceParams(mu=0.1, mu2=0.1, kp=5e5, kd=10.0, min_depth=0.001, max_vel=0.1, fdir1=(1.0, 0.0, 0.0))
+    watched = add(ode.GeomCylinder(space, 0.05, 0.03), (0.0, 0.0, 0.06), wheel, (0.5, 0.1, 0.0))
+    slippery = SurfaceParams(mu=0.8, kp=1e6, kd=100.0, max_vel=0.05, slip1=0.01, slip2=0.02)
+    add(ode.GeomBox(space, (0.1, 0.1, 0.1)), (0.3, 0.0, 0.3), slippery, (0.2, 0.0, 0.0))
+    add(ode.GeomSphere(space, 0.05), (0.32, 0.02, 0.5), SurfaceParams(mu=0.3, fdir1=(0.0, 1.0, 0.0), min_depth=0.002))
+    watch = physics.watch_contacts([watched])
+    trace: Trace = []
+    for _ in range(600):
+        physics.step()
+        trace.append((_state(bodies), physics.contact_count, _watched([watch], names)))
+    assert physics.uses_contact_kernel == kernel
+    return trace
+
+
+def test_gazebo_surfaces_are_bitwise_equal():
+    with_kernel, in_python = _gazebo_surfaces(True), _gazebo_surfaces(False)
+    assert max(count for _, count, _ in with_kernel) >= 3
+    assert [entry[1:] for entry in with_kernel] == [entry[1:] for entry in in_python]
+    assert with_kernel == in_python

@@ -4,6 +4,7 @@ import math
 import ode
 import pytest
 
+from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams, combine_surfaces
 
 
@@ -116,11 +117,48 @@ def test_ball_lands_on_static_box():
 
 def test_surfaces_combine_like_gazebo():
     a, b = SurfaceParams(mu=0.2, mu2=3.0, kp=1e6, kd=10.0), SurfaceParams(mu=1.0, mu2=0.5, kp=1e6, kd=5.0)
-    _, mu, mu2, erp, cfm = combine_surfaces(a, b, 0.001)
+    _, side, adjust, mu, mu2, erp, cfm = combine_surfaces(a, b, 0.001)[:7]
     kp, kd = 5e5, 15.0  # springs in series, dampers in parallel
     assert (mu, mu2) == (0.2, 0.5)
     assert erp == pytest.approx(0.001 * kp / (0.001 * kp + kd))
     assert cfm == pytest.approx(1.0 / (0.001 * kp + kd))
+    assert (side, adjust) == (0, 0)  # no fdir1, no min_depth or max_vel: the world's own contact handling
+
+
+def test_gazebo_per_link_contact_parameters_combine_as_gazebos_ode():
+    """Slip and min_depth the smaller; max_vel the smaller, at most the world's; fdir1 of the smaller mu1."""
+    wheel = SurfaceParams(mu=0.1, mu2=0.1, kp=5e5, kd=10.0, min_depth=0.001, max_vel=0.1, fdir1=(1.0, 0.0, 0.0))
+    caster = SurfaceParams(mu=0.1, kp=1e6, kd=100.0, min_depth=0.002, max_vel=1.0, slip1=0.2, slip2=0.3)
+    plain = SurfaceParams(mu=0.05, fdir1=(0.0, 1.0, 0.0), slip1=0.5, slip2=0.1)
+    surface = combine_surfaces(wheel, caster, 0.001, surface_layer=0.01, max_correcting_vel=2000.0)
+    mode, side, adjust, _, _, erp, _, slip1, slip2, min_depth, depth_cap, layer = surface[:12]
+    assert (side, surface[12:]) == (1, (1.0, 0.0, 0.0))
+    assert adjust == 1 and min_depth == 0.001 and layer == 0.01
+    assert depth_cap == pytest.approx(0.1 * 0.001 / erp)  # push-out (erp / dt) * depth capped at 0.1 m/s
+    assert (slip1, slip2) == (0.0, 0.0) and not mode & (oc.CONTACT_SLIP1 | oc.CONTACT_SLIP2)
+    surface = combine_surfaces(caster, plain, 0.001, surface_layer=0.01, max_correcting_vel=0.5)
+    mode, side, _, _, _, erp, _, slip1, slip2, min_depth, depth_cap = surface[:11]
+    assert (slip1, slip2) == (0.2, 0.1) and mode & oc.CONTACT_SLIP1 and mode & oc.CONTACT_SLIP2
+    assert (side, surface[12:]) == (2, (0.0, 1.0, 0.0))  # plain's mu1 is the smaller
+    assert min_depth == 0.002 and depth_cap == math.inf  # the world's 0.5 is lower: ODE's own cap does it
+    # Neither sets them: the world's surface layer, and no cap beyond ODE's own.
+    assert combine_surfaces(plain, plain, 0.001, 0.01, 2000.0)[2] == 0
+    assert combine_surfaces(wheel, plain, 0.001, 0.01, 0.05)[10] == math.inf
+
+
+@pytest.mark.parametrize(
+    "field, value",
+    [
+        ("min_depth", -0.001),
+        ("max_vel", -1.0),
+        ("slip1", float("nan")),
+        ("slip2", -0.1),
+        ("fdir1", (0.0, float("inf"), 0.0)),
+    ],
+)
+def test_bad_surface_values_are_refused(field, value):
+    with pytest.raises(ValueError, match=field):
+        SurfaceParams(**{field: value}).validate()
 
 
 @pytest.mark.parametrize("mu", [0.3, 0.8])

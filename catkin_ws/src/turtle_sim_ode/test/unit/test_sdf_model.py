@@ -8,7 +8,7 @@ from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
 
 from turtle_sim_ode.models.builder import build_model, compose, inverse, pose_transform, quat_from_rpy
 from turtle_sim_ode.models.sdf import PLANE_THICKNESS, Include, parse_sdf_model, parse_sdf_world
-from turtle_sim_ode.models.urdf import Box, GazeboSurface, parse_urdf, Pose
+from turtle_sim_ode.models.urdf import Box, GazeboSurface, Mesh, parse_urdf, Pose
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams
@@ -327,7 +327,7 @@ def test_plane_becomes_a_box_below_it_in_static_models_only():
         parse_sdf_model(sdf(model("m", link("l", extra=inertial() + plane))))
 
 
-def test_mesh_collides_as_a_small_box_with_a_warning():
+def test_mesh_is_kept_for_spawn_time():
     robot = parse_sdf_model(
         sdf(
             model(
@@ -343,8 +343,8 @@ def test_mesh_collides_as_a_small_box_with_a_warning():
             )
         )
     )
-    assert robot.links["a"].collisions[0].geometry == Box((0.02, 0.02, 0.02))
-    assert any("model://m/base.dae" in w and "not loaded" in w for w in robot.warnings)
+    # Issue 14: the mesh itself, read at spawn (test_meshes_and_worlds); it was a 2 cm box with a warning.
+    assert robot.links["a"].collisions[0].geometry == Mesh("model://m/base.dae", (2.0, 2.0, 2.0))
 
 
 def test_bare_model_plugins_and_missing_inertial():
@@ -421,7 +421,8 @@ def joint(parent, child, joint_type="revolute", extra="", name="j"):
             model("m", link("a", extra='<collision name="c"><geometry><heightmap/></geometry>' "</collision>")),
             "unsupported geometry",
         ),
-        (model("m", '<model name="inner"><link name="a"/></model>', link("a")), "nested <model>"),
+        (model("m", "<include><uri>model://x</uri></include>", link("a")), "an <include> inside a model"),
+        (model("m", '<model><link name="a"/></model>', link("a")), "a nested <model> needs a name"),
         (model("m"), "has no <link>"),
         (
             model("m", link("a"), link("b"), '<joint name="j" type="fixed"><parent>a</parent></joint>'),
@@ -520,19 +521,21 @@ def test_unsupported_parts_are_warned_about():
 
 def test_bad_surface_leaves_the_static_space_clean():
     physics = PhysicsWorld()
-    robot = parse_sdf_model(
-        sdf(
-            model(
-                "m",
-                link(
-                    "a",
-                    extra=box_collision("1 1 1")
-                    + box_collision("1 1 1", "<surface><friction><ode><mu>-1</mu></ode></friction></surface>"),
-                ),
-                static=True,
-            )
+    text = sdf(
+        model(
+            "m",
+            link(
+                "a",
+                extra=box_collision("1 1 1")
+                + box_collision("1 1 1", "<surface><friction><ode><mu>-1</mu></ode></friction></surface>"),
+            ),
+            static=True,
         )
     )
+    with pytest.raises(ModelError, match=r"link 'a'.*friction/ode/mu"):  # the parser refuses it (issue 14)
+        parse_sdf_model(text)
+    robot = parse_sdf_model(text.replace("<mu>-1</mu>", "<mu>1</mu>"))
+    robot.surfaces["a"] = GazeboSurface(mu1=-1.0)  # past the parser: the builder must still clean up
     with pytest.raises(ValueError, match="mu"):
         build_model(physics, robot)
     assert physics.static_space.getNumGeoms() == 0
@@ -551,3 +554,49 @@ def test_world_errors():
         parse_sdf_world(
             sdf('<world name="w"><physics type="ode"><ode><solver><type>pgs</type>' "</solver></ode></physics></world>")
         )
+
+
+def test_a_world_without_gravity_gets_sdfs_default():
+    """Issue 14: SDF's -9.8 as Gazebo gives it, not the simulator's own -9.81; a given <gravity> wins."""
+    assert parse_sdf_world(sdf('<world name="w"></world>')).physics.apply(PhysicsParams()).gravity == (0, 0, -9.8)
+    given = parse_sdf_world(sdf('<world name="w"><gravity>0 0 -9.81</gravity></world>'))
+    assert given.physics.apply(PhysicsParams()).gravity == (0.0, 0.0, -9.81)
+
+
+def test_nested_models_are_flattened_with_gazebos_scoped_names():
+    """Issue 14: a nested model's links and joints join the outer model as 'inner::name', posed in its frame."""
+    inner = (
+        '<model name="inner"><pose>1 0 0 0 0 1.5707963267948966</pose>'
+        + link("a", "0 0 0 0 0 0")
+        + link("b", "0.5 0 0 0 0 0")
+        + '<joint name="hinge" type="revolute"><parent>a</parent><child>b</child><axis><xyz>0 0 1</xyz>'
+        "<limit><lower>-1</lower><upper>1</upper></limit></axis></joint>"
+        '<model name="deep">' + link("c", "0 0 1 0 0 0") + "</model></model>"
+    )
+    outer = model(
+        "outer",
+        link("base"),
+        inner,
+        '<joint name="mount" type="fixed"><parent>base</parent><child>inner::a</child></joint>'
+        '<joint name="deep_mount" type="fixed"><parent>base</parent><child>inner::deep::c</child></joint>',
+    )
+    robot = parse_sdf_model(sdf(outer))
+    assert set(robot.links) == {"base", "inner::a", "inner::b", "inner::deep::c"}
+    assert set(robot.joints) == {"mount", "deep_mount", "inner::hinge"}
+    assert (robot.joints["inner::hinge"].parent, robot.joints["inner::hinge"].child) == ("inner::a", "inner::b")
+    physics = PhysicsWorld()
+    built = build_model(physics, robot, (0, 0, 2, 0, 0, 0))
+    b = built.link_pose("inner::b")[0]
+    assert b == pytest.approx((1.0, 0.5, 2.0), abs=1e-9)  # inner turned 90 degrees: its x is the world's y
+    assert built.link_pose("inner::deep::c")[0] == pytest.approx((1.0, 0.0, 3.0), abs=1e-9)
+
+
+def test_a_world_model_with_a_nested_model_spawns_as_one_model():
+    from turtle_sim_ode.world.simulation import Simulation
+
+    nested = model("table", link("top", "0 0 0.5 0 0 0"), '<model name="leg">' + link("foot") + "</model>", static=True)
+    sim = Simulation()
+    sim.load_world(parse_sdf_world(sdf(f'<world name="w">{nested}</world>')))
+    assert list(sim.models) == ["table"]
+    assert set(sim.models["table"].robot.links) == {"top", "leg::foot"}
+    sim.get_link_state("table::leg::foot")  # Gazebo's scoped name resolves

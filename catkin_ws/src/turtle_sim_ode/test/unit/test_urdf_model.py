@@ -2,7 +2,7 @@
 import pytest
 from conftest import TURTLEBOT_URDF
 
-from turtle_sim_ode.models.urdf import Box, Cylinder, GazeboSurface, MAX_LINKS, parse_urdf, Sphere
+from turtle_sim_ode.models.urdf import Mesh, Cylinder, GazeboSurface, MAX_LINKS, parse_urdf, Sphere
 from turtle_sim_ode.models.text import ModelError
 
 INERTIA = '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
@@ -128,7 +128,7 @@ def test_model_error_is_a_value_error():
     assert issubclass(ModelError, ValueError)
 
 
-def test_mesh_collision_becomes_small_box_with_warning():
+def test_mesh_collision_is_kept_unopened():
     model = parse_urdf(
         robot(
             link(
@@ -140,8 +140,9 @@ def test_mesh_collision_becomes_small_box_with_warning():
             )
         )
     )
-    assert model.links["a"].collisions[0].geometry == Box((0.02, 0.02, 0.01))
-    assert len(model.warnings) == 1 and "base.stl" in model.warnings[0]
+    # Issue 14: a mesh, read at spawn from under the ROS package path (test_meshes_and_worlds); it was a 1 cm box.
+    assert model.links["a"].collisions[0].geometry == Mesh("package://x/base.stl", (2.0, 2.0, 1.0))
+    assert model.warnings == []
 
 
 def test_gazebo_reference_to_unknown_link_warns():

@@ -2,6 +2,8 @@
 import math
 
 import pytest
+
+from turtle_sim_ode.physics.trimesh import quickstep_w
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
 
 from turtle_sim_ode.models.sdf import parse_sdf_world
@@ -433,10 +435,9 @@ def test_set_physics_properties_rejects_bad_values_and_changes_nothing(change, m
 def test_set_physics_properties_warns_about_settings_it_keeps():
     sim = Simulation()
     arguments = physics_arguments(sim.physics_properties(), auto_disable_bodies=True, sor_pgs_w=1.0)
-    assert sim.set_physics_properties(**arguments) == [
-        "auto_disable_bodies is not supported: bodies stay enabled",
-        "sor_pgs_w is fixed at 1.3: ignored",
-    ]
+    # Issue 14: the SOR factor is applied (Gazebo's <sor>); it was fixed at 1.3 with a warning.
+    assert sim.set_physics_properties(**arguments) == ["auto_disable_bodies is not supported: bodies stay enabled"]
+    assert sim.physics_properties()["ode_config"]["sor_pgs_w"] == 1.0 and quickstep_w(sim.physics.world) == 1.0
 
 
 # --- model configuration ---------------------------------------------------------------------

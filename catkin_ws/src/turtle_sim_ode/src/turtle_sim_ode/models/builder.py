@@ -8,9 +8,10 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 import ode
 
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, Pose, RobotModel, Sphere
+from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, Mesh, Pose, RobotModel, Sphere
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
+from turtle_sim_ode.physics.trimesh import MeshGeom, remove_geom
 from turtle_sim_ode.physics.world import PhysicsWorld, SurfaceParams
 
 Vec3 = Tuple[float, float, float]
@@ -57,6 +58,16 @@ def quat_rotate(q: Quat, v: Vec3) -> Vec3:
 def quat_matrix(q: Quat) -> Matrix3:
     columns = [quat_rotate(q, axis) for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
     return tuple(tuple(columns[c][r] for c in range(3)) for r in range(3))  # type: ignore[return-value]
+
+
+def rpy_of(q: Quat) -> Vec3:
+    """Fixed-axis roll, pitch, yaw of a quaternion (inverse of quat_from_rpy)."""
+    m = quat_matrix(q)
+    cos_pitch = math.hypot(m[0][0], m[1][0])
+    pitch = math.atan2(-m[2][0], cos_pitch)
+    if cos_pitch < 1e-9:  # gimbal lock: only roll and yaw together are defined; all in yaw
+        return (0.0, pitch, math.atan2(-m[0][1], m[1][1]))
+    return (math.atan2(m[2][1], m[2][2]), pitch, math.atan2(m[1][0], m[0][0]))
 
 
 def compose(a: Transform, b: Transform) -> Transform:
@@ -172,7 +183,7 @@ def _remove_static_geoms(physics: PhysicsWorld, space: ode.SpaceBase, geoms: Dic
     for link_geoms in geoms.values():
         for geom in link_geoms:
             physics.unregister_geom(geom)
-            space.remove(geom)
+            remove_geom(space, geom)
 
 
 class BuiltModel:
@@ -429,7 +440,29 @@ def _create_geom(space: ode.SpaceBase, geometry: Geometry) -> ode.GeomObject:
         return ode.GeomCylinder(space, geometry.radius, geometry.length)
     if isinstance(geometry, Sphere):
         return ode.GeomSphere(space, geometry.radius)
+    if isinstance(geometry, Mesh):
+        if geometry.vertices is None or geometry.faces is None:
+            raise ModelError(f"mesh '{geometry.uri}' is not loaded (models.meshes.load_meshes reads it)")
+        return MeshGeom(space, geometry.vertices, geometry.faces)  # type: ignore[return-value]
     raise ModelError(f"unsupported geometry {geometry!r}")
+
+
+def _on_body(geometry: Geometry, robot: RobotModel, link: str) -> Tuple[Geometry, Transform]:
+    """The geometry a moving link's collision gets, and its centre in the collision frame: a mesh becomes the box
+    that bounds it (meshes are body-less, see physics.trimesh), with a warning."""
+    if not isinstance(geometry, Mesh):
+        return geometry, ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
+    if geometry.vertices is None:
+        raise ModelError(f"mesh '{geometry.uri}' is not loaded (models.meshes.load_meshes reads it)")
+    low = [min(v[axis] for v in geometry.vertices) for axis in range(3)]
+    high = [max(v[axis] for v in geometry.vertices) for axis in range(3)]
+    size = tuple(max(h - l, 1e-4) for l, h in zip(low, high))
+    centre = tuple((l + h) / 2 for l, h in zip(low, high))
+    robot.warnings.append(
+        f"link '{link}': mesh '{geometry.uri}' on a moving link collides as its bounding box "
+        f"{size[0]:.3g} x {size[1]:.3g} x {size[2]:.3g} m (meshes collide as meshes on static models)"
+    )
+    return Box(size), (centre, (1.0, 0.0, 0.0, 0.0))  # type: ignore[arg-type]
 
 
 def _surface_for(robot: RobotModel, link: str, default: SurfaceParams) -> SurfaceParams:
@@ -441,6 +474,11 @@ def _surface_for(robot: RobotModel, link: str, default: SurfaceParams) -> Surfac
         mu2=default.mu2 if tags.mu2 is None else tags.mu2,
         kp=default.kp if tags.kp is None else tags.kp,
         kd=default.kd if tags.kd is None else tags.kd,
+        min_depth=default.min_depth if tags.min_depth is None else tags.min_depth,
+        max_vel=default.max_vel if tags.max_vel is None else tags.max_vel,
+        fdir1=default.fdir1 if tags.fdir1 is None else tags.fdir1,
+        slip1=default.slip1 if tags.slip1 is None else tags.slip1,
+        slip2=default.slip2 if tags.slip2 is None else tags.slip2,
     )
 
 
@@ -549,9 +587,10 @@ def build_model(
                 geoms[member] = []
                 surface = _surface_for(robot, member, physics.params.default_surface)
                 for collision in robot.links[member].collisions:
-                    geom = _create_geom(space, collision.geometry)
+                    geometry, centre = _on_body(collision.geometry, robot, member)
+                    geom = _create_geom(space, geometry)
                     geom.setBody(body)
-                    geom_offset = compose(offset, pose_transform(collision.origin))
+                    geom_offset = compose(compose(offset, pose_transform(collision.origin)), centre)
                     geom.setOffsetPosition(geom_offset[0])
                     geom.setOffsetQuaternion(geom_offset[1])
                     physics.register_geom(geom, surface)

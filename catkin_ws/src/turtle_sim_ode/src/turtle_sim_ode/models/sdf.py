@@ -10,11 +10,20 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Dict, List, Optional, Set, Tuple
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Set, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.builder import Quat, Transform, compose, inverse, pose_transform, quat_matrix, quat_rotate
+from turtle_sim_ode.models.builder import (
+    Quat,
+    Transform,
+    compose,
+    inverse,
+    pose_transform,
+    quat_rotate,
+    rpy_of,
+)
 from turtle_sim_ode.models.materials import RGB, rgb_of, sdf_link_color
+from turtle_sim_ode.models.nested import flatten_nested_models, read_pose
 from turtle_sim_ode.models.text import (
     ModelError,
     child_text,
@@ -26,7 +35,6 @@ from turtle_sim_ode.models.text import (
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
-    MESH_PLACEHOLDER_EDGE,
     Box,
     Collision,
     Cylinder,
@@ -50,6 +58,8 @@ from turtle_sim_ode.models.urdf import (
     _offset,
     _vec3,
     check_size,
+    mesh_geometry,
+    read_surface_value,
 )
 
 if TYPE_CHECKING:
@@ -75,9 +85,14 @@ SURFACE_PATHS = {
     "kd": "contact/ode/kd",
     "max_vel": "contact/ode/max_vel",
     "min_depth": "contact/ode/min_depth",
+    "fdir1": "friction/ode/fdir1",
+    "slip1": "friction/ode/slip1",
+    "slip2": "friction/ode/slip2",
 }
 # <world> children that change nothing the simulator models.
 SILENT_WORLD_TAGS = ("light", "scene", "gui", "atmosphere", "spherical_coordinates", "magnetic_field", "wind", "audio")
+# <gravity> when a world has none: SDF's default (sdformat's world.sdf).
+SDF_GRAVITY: Vec3 = (0.0, 0.0, -9.8)
 GROUND_PLANE_URI = "model://ground_plane"
 SUN_URI = "model://sun"
 # Gazebo's own inline copy of its ground plane (worlds saved from the GUI contain one).
@@ -98,6 +113,7 @@ class SdfPhysics:
     contact_max_correcting_vel: Optional[float] = None
     contact_surface_layer: Optional[float] = None
     gravity: Optional[Vec3] = None
+    sor: Optional[float] = None
 
     def apply(self, params: PhysicsParams) -> PhysicsParams:
         """A copy of ``params`` with the values this world sets (real-time pacing is the
@@ -111,6 +127,7 @@ class SdfPhysics:
             "contact_max_correcting_vel": self.contact_max_correcting_vel,
             "contact_surface_layer": self.contact_surface_layer,
             "gravity": self.gravity,
+            "sor": self.sor,
         }
         result = replace(params, **{k: v for k, v in given.items() if v is not None})
         try:
@@ -127,6 +144,8 @@ class WorldModel:
     name: str
     pose: Pose
     model: RobotModel
+    # The folder of the file the model came from (an <include>d model's), for its relative mesh names.
+    base: Optional[str] = None
 
     @property
     def spawn_pose(self) -> Tuple[float, float, float, float, float, float]:
@@ -163,14 +182,7 @@ class World:
 
 
 # --- small helpers ------------------------------------------------------------------
-def _rpy(q: Quat) -> Vec3:
-    """Fixed-axis roll, pitch, yaw of a quaternion (inverse of quat_from_rpy)."""
-    m = quat_matrix(q)
-    cos_pitch = math.hypot(m[0][0], m[1][0])
-    pitch = math.atan2(-m[2][0], cos_pitch)
-    if cos_pitch < 1e-9:  # gimbal lock: only roll and yaw together are defined; all in yaw
-        return (0.0, pitch, math.atan2(-m[0][1], m[1][1]))
-    return (math.atan2(m[2][1], m[2][2]), pitch, math.atan2(m[1][0], m[0][0]))
+_rpy = rpy_of  # the name world.simulation imports
 
 
 def _as_pose(transform: Transform) -> Pose:
@@ -196,23 +208,7 @@ def _bool(element: Element, path: str, what: str, default: bool) -> bool:
     raise ModelError(f"{what} <{path}>: expected true or false, got {text!r}")
 
 
-def _pose(element: Element, what: str) -> Pose:
-    """The <pose> child: "x y z roll pitch yaw" relative to the default frame."""
-    pose = element.find("pose")
-    if pose is None:
-        return Pose()
-    for attribute in ("relative_to", "frame"):
-        if pose.get(attribute):
-            raise ModelError(
-                f"{what} <pose {attribute}='{pose.get(attribute)}'>: only poses " f"in the default frame are supported"
-            )
-    parts = (pose.text or "").split()
-    if not parts:
-        return Pose()
-    if len(parts) != 6:
-        raise ModelError(f"{what} <pose>: expected 6 numbers, got {pose.text!r}")
-    values = [read_number(p, f"{what} <pose>") for p in parts]
-    return Pose(_offset((values[0], values[1], values[2]), f"{what} <pose> x y z"), (values[3], values[4], values[5]))
+_pose = read_pose
 
 
 def _plugin(element: Element, what: str) -> GazeboPlugin:
@@ -308,27 +304,37 @@ def _parse_geometry(
             ((-half * normal[0], -half * normal[1], -half * normal[2]), _plane_to_z(normal)),
         )
     if shape.tag == "mesh":
-        scale = _vec3(child_text(shape, "scale"), f"{what} <scale>", (1.0, 1.0, 1.0))
-        size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
-        if min(size) <= 0:
-            raise ModelError(f"{what} <scale> must not be zero, got {scale}")
-        _offset(size, f"{what} placeholder box for <scale> {scale}")
-        warnings.append(
-            f"{what}: mesh '{child_text(shape, 'uri') or ''}' is not loaded; colliding "
-            f"with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead"
-        )
-        return Box(size), identity  # type: ignore[arg-type]
+        if shape.find("submesh") is not None:
+            warnings.append(f"{what}: <mesh><submesh> is not supported; the whole mesh collides")
+        return mesh_geometry(child_text(shape, "uri"), child_text(shape, "scale"), f"{what} <mesh>"), identity
     raise ModelError(f"{what}: unsupported geometry")
 
 
-def _parse_surface(element: Optional[Element], what: str) -> Dict[str, float]:
+# <surface> entries that are read (SURFACE_PATHS) or that hold only their parents' defaults.
+_SURFACE_CONTAINERS = {"friction", "friction/ode", "contact", "contact/ode"}
+
+
+def _surface_leaves(element: Element, prefix: str = "") -> List[str]:
+    paths = []
+    for child in element:
+        path = f"{prefix}{child.tag}"
+        paths.extend(_surface_leaves(child, path + "/") if len(child) else [path])
+    return paths
+
+
+def _parse_surface(element: Optional[Element], what: str, warnings: Optional[List[str]] = None) -> Dict[str, Any]:
     if element is None:
         return {}
+    if warnings is not None:
+        read = set(SURFACE_PATHS.values()) | _SURFACE_CONTAINERS
+        for path in _surface_leaves(element):
+            if path not in read:
+                warnings.append(f"{what} <surface> <{path}> is not simulated, ignored")
     values = {}
     for key, path in SURFACE_PATHS.items():
-        value = _optional_float(element, path, f"{what} <surface>")
-        if value is not None:
-            values[key] = value
+        text = child_text(element, path)
+        if text is not None:
+            values[key] = read_surface_value(key, text, f"{what} <surface> <{path}>")
     return values
 
 
@@ -349,7 +355,7 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
         link.collisions.append(
             Collision(collision_name, _as_pose(compose(pose_transform(_pose(collision, where)), offset)), geometry)
         )
-        values = _parse_surface(collision.find("surface"), where)
+        values = _parse_surface(collision.find("surface"), where, model.warnings)
         if any(surface.get(key, value) != value for key, value in values.items()):
             model.warnings.append(
                 f"{what}: its collisions have different <surface> values; "
@@ -446,9 +452,9 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
     """The model and its own <pose>."""
     name = required_attribute(element, "name", "<model>")
     what = f"model '{name}'"
-    for nested in ("model", "include"):
-        if element.find(nested) is not None:
-            raise ModelError(f"{what}: nested <{nested}> is not supported")
+    if element.find("include") is not None:
+        raise ModelError(f"{what}: an <include> inside a model is not supported")
+    flatten_nested_models(element, what)
     static = _bool(element, "static", what, False)
     link_elements, joint_elements = element.findall("link"), element.findall("joint")
     if not link_elements:
@@ -532,6 +538,25 @@ def parse_sdf_model(text: str) -> RobotModel:
     return _parse_model(models[0], version)[0]
 
 
+def parse_included_model(text: str, name: Optional[str], static: Optional[bool]) -> Tuple[RobotModel, Pose]:
+    """An <include>d model file (``<sdf><model>``): the model, renamed to ``name`` and made ``static`` where the
+    <include> says so, and its own <pose>."""
+    root = parse_xml(text, "SDF")
+    models = root.findall("model") if root.tag == "sdf" else [root] if root.tag == "model" else []
+    if len(models) != 1:
+        raise ModelError(f"expected one <model> in the model file, found {len(models)}")
+    element = models[0]
+    if name is not None:
+        element.set("name", name)
+    if static is not None:
+        for old in element.findall("static"):
+            element.remove(old)
+        flag = Element("static")
+        flag.text = "true" if static else "false"
+        element.insert(0, flag)
+    return _parse_model(element, _version(root) if root.tag == "sdf" else BARE_MODEL_VERSION)
+
+
 def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
     blocks = world.findall("physics")
     chosen = next(
@@ -552,6 +577,9 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
     step = _optional_float(chosen, "max_step_size", what)
     if step is not None and step <= 0:
         raise ModelError(f"{what} <max_step_size> must be > 0, got {step}")
+    for path, idle in (("ode/solver/precon_iters", "0"), ("ode/solver/use_dynamic_moi_rescaling", "0")):
+        if child_text(chosen, path) not in (None, idle, "false"):
+            warnings.append(f"{what} <{path}> {child_text(chosen, path)} is not simulated, ignored")
     return SdfPhysics(
         max_step_size=step,
         real_time_factor=_optional_float(chosen, "real_time_factor", what),
@@ -562,7 +590,9 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
         erp=_optional_float(chosen, "ode/constraints/erp", what),
         contact_max_correcting_vel=_optional_float(chosen, "ode/constraints/contact_max_correcting_vel", what),
         contact_surface_layer=_optional_float(chosen, "ode/constraints/contact_surface_layer", what),
-        gravity=None if gravity_text is None else _vec3(gravity_text, "<gravity>", (0.0, 0.0, 0.0)),
+        sor=_optional_float(chosen, "ode/solver/sor", what),
+        # SDF's default, as Gazebo gives a world without <gravity> (not the simulator's own -9.81).
+        gravity=SDF_GRAVITY if gravity_text is None else _vec3(gravity_text, "<gravity>", (0.0, 0.0, 0.0)),
     )
 
 

@@ -21,9 +21,18 @@ MAX_COLLISIONS = 1000
 # Magnitude limits: lengths (offsets, sizes) in m, masses in kg, inertia entries in kg m^2. Beyond them ODE's
 # collision grid or integrator overflows and aborts the whole process (offsets of 1e12 m, inertias of 1e300).
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
-# Stand-in for a mesh collision: mesh files are never opened, so their size is unknown.
-MESH_PLACEHOLDER_EDGE = 0.01
-SURFACE_TAGS = {"mu1": "mu1", "mu2": "mu2", "kp": "kp", "kd": "kd", "maxVel": "max_vel", "minDepth": "min_depth"}
+# <gazebo reference="link"> contact tags -> GazeboSurface fields (Gazebo's ODE surface of the link's collisions).
+SURFACE_TAGS = {
+    "mu1": "mu1",
+    "mu2": "mu2",
+    "kp": "kp",
+    "kd": "kd",
+    "maxVel": "max_vel",
+    "minDepth": "min_depth",
+    "fdir1": "fdir1",
+    "slip1": "slip1",
+    "slip2": "slip2",
+}
 
 
 @dataclass(frozen=True)
@@ -67,7 +76,19 @@ class Sphere:
     radius: float
 
 
-Geometry = Union[Box, Cylinder, Sphere]
+@dataclass(frozen=True)
+class Mesh:
+    """A collision mesh: ``uri`` as the model text gives it (package://, model://, file:// or a path), scaled per
+    axis. The parsers open no file: models.meshes.load_meshes fills ``vertices`` and ``faces`` (ODE trimesh data,
+    scaled) from files under the ROS package path and model path before the model is built."""
+
+    uri: str
+    scale: Vec3 = (1.0, 1.0, 1.0)
+    vertices: Optional[Tuple[Vec3, ...]] = field(default=None, compare=False, repr=False)
+    faces: Optional[Tuple[Tuple[int, int, int], ...]] = field(default=None, compare=False, repr=False)
+
+
+Geometry = Union[Box, Cylinder, Sphere, Mesh]
 
 
 @dataclass(frozen=True)
@@ -124,6 +145,23 @@ class GazeboSurface:
     kd: Optional[float] = None
     max_vel: Optional[float] = None
     min_depth: Optional[float] = None
+    fdir1: Optional[Vec3] = None
+    slip1: Optional[float] = None
+    slip2: Optional[float] = None
+
+
+def read_surface_value(field_name: str, text: Optional[str], what: str) -> Union[float, Vec3]:
+    """One GazeboSurface field from its tag's text: ``fdir1`` three finite numbers, ``kp`` a finite number > 0, the
+    others finite and >= 0 (Gazebo's ODE would take a negative min_depth or max_vel, or NaN, and misbehave);
+    ModelError naming ``what`` (the link and the tag) otherwise."""
+    if field_name == "fdir1":
+        if text is None:
+            raise ModelError(f"{what}: expected 3 numbers, got nothing")
+        return _vec3(text, what, (0.0, 0.0, 0.0))
+    value = read_number(text, what, minimum=0.0)
+    if field_name == "kp" and value <= 0:
+        raise ModelError(f"{what} must be > 0, got '{text}'")
+    return value
 
 
 @dataclass(frozen=True)
@@ -170,6 +208,17 @@ def _vec3(text: Optional[str], what: str, default: Vec3) -> Vec3:
     if len(parts) != 3:
         raise ModelError(f"{what}: expected 3 numbers, got {text!r}")
     return (read_number(parts[0], what), read_number(parts[1], what), read_number(parts[2], what))
+
+
+def mesh_geometry(uri: Optional[str], scale_text: Optional[str], what: str) -> Mesh:
+    """A <mesh> collision (no file opened); ModelError without a URI or with a zero or huge scale."""
+    if uri is None or not uri.strip():
+        raise ModelError(f"{what}: needs a file name (URI)")
+    scale = _vec3(scale_text, f"{what} scale", (1.0, 1.0, 1.0))
+    for value in scale:
+        if value == 0 or abs(value) > MAX_LENGTH:
+            raise ModelError(f"{what} scale must be non-zero and at most {MAX_LENGTH:g}, got {scale}")
+    return Mesh(uri.strip(), scale)
 
 
 def _bounded(value: float, limit: float, what: str) -> float:
@@ -265,15 +314,7 @@ def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) 
     if shape.tag == "sphere":
         return Sphere(_positive(read_number(shape.get("radius"), f"{what} sphere radius"), f"{what} sphere radius"))
     if shape.tag == "mesh":
-        scale = _vec3(shape.get("scale"), f"{what} mesh scale", (1.0, 1.0, 1.0))
-        size = tuple(MESH_PLACEHOLDER_EDGE * abs(s) for s in scale)
-        for value in size:
-            _positive(value, f"{what} placeholder box for mesh scale {scale}")
-        warnings.append(
-            f"{what}: mesh '{shape.get('filename', '')}' is not loaded; "
-            f"colliding with a {size[0]:g} x {size[1]:g} x {size[2]:g} m box instead"
-        )
-        return Box(size)  # type: ignore[arg-type]
+        return mesh_geometry(shape.get("filename"), shape.get("scale"), f"{what} mesh")
     raise ModelError(f"{what}: unsupported geometry <{shape.tag}>")
 
 
@@ -347,9 +388,17 @@ def _tag_value(element: Element) -> Optional[str]:
     return text.strip() if text is not None else None
 
 
+# <gazebo> children that change only what Gazebo draws: read silently.
+VISUAL_TAGS = ("material", "visual")
+
+
 def _parse_gazebo(element: Element, model: RobotModel) -> None:
     reference = element.get("reference")
     model.sensors.extend(SensorElement(reference, sensor) for sensor in element.findall("sensor"))
+    known = ("sensor", "plugin") + VISUAL_TAGS + (tuple(SURFACE_TAGS) if reference is not None else ())
+    where = f"<gazebo reference='{reference}'>" if reference is not None else "<gazebo>"
+    for tag in dict.fromkeys(child.tag for child in element if child.tag not in known):
+        model.warnings.append(f"{where} <{tag}> is not simulated, ignored")
     if reference is None:
         for plugin in element.findall("plugin"):
             model.plugins.append(
@@ -366,8 +415,8 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
     values = {}
     for child in element:
         if child.tag in SURFACE_TAGS:
-            values[SURFACE_TAGS[child.tag]] = read_number(
-                _tag_value(child), f"<gazebo reference='{reference}'> {child.tag}"
+            values[SURFACE_TAGS[child.tag]] = read_surface_value(
+                SURFACE_TAGS[child.tag], _tag_value(child), f"<gazebo reference='{reference}'> <{child.tag}>"
             )
     if not values:
         return

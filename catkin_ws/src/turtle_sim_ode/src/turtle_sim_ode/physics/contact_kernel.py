@@ -16,8 +16,9 @@ import ode
 
 LIBRARY = "libturtle_sim_ode_contacts.so"
 
-# (mode, mu, mu2, soft_erp, soft_cfm), as physics.ContactSurface.
-PairSurface = Tuple[int, float, float, float, float]
+# As physics.world.ContactSurface: (mode, fdir_side, adjust_depth, mu, mu2, soft_erp, soft_cfm, slip1, slip2,
+# min_depth, depth_cap, surface_layer, fdir1 x, y, z).
+PairSurface = Tuple[int, int, int, float, float, float, float, float, float, float, float, float, float, float, float]
 # (geom id, other geom id, position, normal from other towards geom, depth)
 WatchedPoint = Tuple[int, int, Tuple[float, float, float], Tuple[float, float, float], float]
 
@@ -25,10 +26,20 @@ WatchedPoint = Tuple[int, int, Tuple[float, float, float], Tuple[float, float, f
 class _PairSurface(ctypes.Structure):
     _fields_ = [
         ("mode", ctypes.c_int),
+        ("fdir_side", ctypes.c_int),
+        ("adjust_depth", ctypes.c_int),
         ("mu", ctypes.c_double),
         ("mu2", ctypes.c_double),
         ("soft_erp", ctypes.c_double),
         ("soft_cfm", ctypes.c_double),
+        ("slip1", ctypes.c_double),
+        ("slip2", ctypes.c_double),
+        ("min_depth", ctypes.c_double),
+        ("depth_cap", ctypes.c_double),
+        ("surface_layer", ctypes.c_double),
+        ("fdir1_x", ctypes.c_double),  # the C struct's double fdir1[3]: the same layout
+        ("fdir1_y", ctypes.c_double),
+        ("fdir1_z", ctypes.c_double),
     ]
 
 

@@ -22,6 +22,7 @@ from tf2_msgs.msg import TFMessage
 from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepSimulationResponse
 
 from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.ros.resource_paths import resource_paths
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.gazebo_api import MAX_RAYS_PER_MODEL, GazeboApi, TopicTypes, known_topic_types, summarise
 from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
@@ -329,6 +330,12 @@ def main() -> int:
         rospy.logfatal(str(error))
         return 1
     node = SimulatorNode(settings)
+    node.sim.resources = resource_paths()
+    rospy.loginfo(
+        "model and mesh files are read from under %s; Gazebo model path %s",
+        node.sim.resources.allowed_roots(),
+        node.sim.resources.model_paths,
+    )
     node.sets_ros_time = stop_hearing_own_clock()
     if settings.world_name:
         try:

@@ -90,6 +90,14 @@ ODOM_POSE_COVARIANCE = [
     0.05,
 ]
 ODOM_TWIST_COVARIANCE = ODOM_POSE_COVARIANCE
+# gazebo_ros_diff_drive's /odom (GazeboRosDiffDrive::publishOdometry, either odometrySource): x, y and yaw
+# measured, z, roll and pitch unknown; no twist covariance.
+DIFF_DRIVE_POSE_COVARIANCE = tuple(
+    {0: 1e-5, 7: 1e-5, 14: 1e12, 21: 1e12, 28: 1e12, 35: 1e-3}.get(index, 0.0) for index in range(36)
+)
+DIFF_DRIVE_TWIST_COVARIANCE = (0.0,) * 36
+# The frame kobuki_gazebo_plugins stamps /joint_states with (resolved with the tf_prefix).
+KOBUKI_JOINT_STATES_FRAME = "base_link"
 Vec3 = Tuple[float, float, float]
 
 
@@ -104,6 +112,26 @@ def rotate_inverse(q: Sequence[float], v: Sequence[float]) -> Vec3:
     vx, vy, vz = v
     tx, ty, tz = 2 * (y * vz - z * vy), 2 * (z * vx - x * vz), 2 * (x * vy - y * vx)
     return (vx + w * tx + y * tz - z * ty, vy + w * ty + z * tx - x * tz, vz + w * tz + x * ty - y * tx)
+
+
+def tf_prefix(namespace: str) -> str:
+    """The tf_prefix gazebo_plugins' GazeboRos (diff drive, Kobuki) gives a plugin in ``namespace``: the
+    ``tf_prefix`` parameter searched upwards from the namespace, else the namespace itself without its trailing
+    slash."""
+    parts = [part for part in namespace.strip("/").split("/") if part]
+    for depth in range(len(parts), -1, -1):
+        key = "/" + "/".join(parts[:depth] + ["tf_prefix"])
+        if rospy.has_param(key):
+            return str(rospy.get_param(key))
+    return namespace.rstrip("/")
+
+
+def resolve_frame(prefix: str, frame: str) -> str:
+    """tf::resolve: a frame with a leading slash as it is (without the slash), else under ``prefix``."""
+    if frame.startswith("/"):
+        return frame[1:]
+    prefix = prefix.lstrip("/")
+    return f"{prefix}/{frame}" if prefix else frame
 
 
 class DriveInterface(Periodic):
@@ -127,8 +155,10 @@ class DriveInterface(Periodic):
         self.robot = robot
         self._sim = sim
         self._tf = tf_broadcaster if config.publish_tf and settings.publish_tf else None
-        self._odom_frame = config.odometry_frame or settings.odom_frame
+        prefix_tf = tf_prefix(namespace or config.robot_namespace)
         self._base_frame = config.base_frame or settings.base_frame
+        self._odom_frame = resolve_frame(prefix_tf, config.odometry_frame or settings.odom_frame)
+        published_base = resolve_frame(prefix_tf, self._base_frame)
         self._world_odometry = config.odometry_source == "world"
         self._reset_requested = False
         prefix = topic_prefix(namespace or config.robot_namespace)
@@ -136,15 +166,19 @@ class DriveInterface(Periodic):
         if config.reset_topic:
             self._handles.append(subscriber(prefix + config.reset_topic, EmptyMsg, self._on_reset, 1))
         self._odom_pub = packed_publisher(prefix + config.odometry_topic, Odometry)
-        # gazebo_ros_diff_drive's world odometry comes without covariances.
-        covariances = () if self._world_odometry else (ODOM_POSE_COVARIANCE, ODOM_TWIST_COVARIANCE)
-        self._odom_packer = OdometryPacker(self._odom_frame, self._base_frame, *covariances)
-        self._tf_packer = TransformPacker(self._odom_frame, self._base_frame)
+        if kobuki:
+            covariances = (ODOM_POSE_COVARIANCE, ODOM_TWIST_COVARIANCE)
+        else:
+            covariances = (DIFF_DRIVE_POSE_COVARIANCE, DIFF_DRIVE_TWIST_COVARIANCE)
+        self._odom_packer = OdometryPacker(self._odom_frame, published_base, *covariances)
+        self._tf_packer = TransformPacker(self._odom_frame, published_base)
         self._joint_pub: Optional[PackedPublisher] = None
         if config.publish_joint_states:
             self._joint_pub = packed_publisher(prefix + "joint_states", JointState)
         self._handles += [p for p in (self._odom_pub, self._joint_pub) if p is not None]
-        self._joint_packer = JointStatePacker([robot.left.name, robot.right.name])
+        self._joint_packer = JointStatePacker(
+            [robot.left.name, robot.right.name], resolve_frame(prefix_tf, KOBUKI_JOINT_STATES_FRAME) if kobuki else ""
+        )
 
     def _on_velocity(self, twist: Twist) -> None:
         linear, angular = twist.linear.x, twist.angular.z
@@ -300,8 +334,9 @@ class LaserPublisher(Periodic):
         super().__init__(period(config.update_rate))  # 0: every step, as Gazebo's sensors
         self._scanner = scanner
         self._pub = packed_publisher(plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan)
+        # gazebo_ros_laser resolves its frameName with the tf_prefix as GazeboRos does (tf_prefix, else namespace).
         self._packer = LaserScanPacker(
-            scanner.frame,
+            resolve_frame(tf_prefix(namespace or config.robot_namespace), scanner.frame),
             angle_min=config.min_angle,
             angle_max=config.max_angle,
             angle_increment=config.angle_increment,

@@ -60,7 +60,11 @@ def parse_args(argv: List[str]) -> argparse.Namespace:
         metavar=("JOINT", "POSITION"),
         help="initial joint position (repeatable)",
     )
-    parser.add_argument("-package_to_model", action="store_true", help="accepted; meshes are not loaded anyway")
+    parser.add_argument(
+        "-package_to_model",
+        action="store_true",
+        help="accepted; package:// mesh names are read from the ROS package path as they are",
+    )
     parser.add_argument("-b", dest="bond", action="store_true", help="delete the model when this node exits")
     args = parser.parse_args(argv)
     for joint, position in args.J:

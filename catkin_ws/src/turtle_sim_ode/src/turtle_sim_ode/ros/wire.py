@@ -202,11 +202,11 @@ class TransformPacker:
 
 
 class JointStatePacker:
-    """sensor_msgs/JointState of fixed joint names: positions and velocities, no efforts, empty frame_id."""
+    """sensor_msgs/JointState of fixed joint names and frame_id: positions and velocities, no efforts."""
 
-    def __init__(self, names: Sequence[str]) -> None:
+    def __init__(self, names: Sequence[str], frame_id: str = "") -> None:
         count = len(names)
-        fixed = _string("") + struct.pack("<I", count) + b"".join(_string(name) for name in names)
+        fixed = _string(frame_id) + struct.pack("<I", count) + b"".join(_string(name) for name in names)
         self._fixed = fixed
         self._count = count
         self._struct = struct.Struct("<" + _HEADER % len(fixed) + "I%ddI%ddI" % (count, count))

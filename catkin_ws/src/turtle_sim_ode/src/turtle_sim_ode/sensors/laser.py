@@ -18,6 +18,7 @@ from turtle_sim_ode.models.builder import (
     quat_from_rpy,
     quat_matrix,
 )
+from turtle_sim_ode.physics.trimesh import collide as mesh_aware_collide
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.config import LaserConfig
 from turtle_sim_ode.sensors.rays import world_geoms
@@ -89,7 +90,7 @@ class LaserScanner:
         placed = [False] * n
         cast_beams: List[int] = []
 
-        collide = ode.collide
+        collide = mesh_aware_collide
 
         def cast(beams: Sequence[int], geom: ode.GeomObject) -> None:
             for i in beams:

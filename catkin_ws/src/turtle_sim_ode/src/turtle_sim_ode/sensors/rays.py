@@ -9,6 +9,7 @@ import ode
 from turtle_sim_ode.models.builder import (
     BuiltModel,
 )
+from turtle_sim_ode.physics.trimesh import collide
 from turtle_sim_ode.physics.world import PhysicsWorld
 
 
@@ -36,7 +37,7 @@ def world_geoms(
 
 def ray_distance(ray: ode.GeomRay, geom: ode.GeomObject) -> float:
     best = math.inf
-    for contact in ode.collide(ray, geom):
+    for contact in collide(ray, geom):
         depth = contact.getContactGeomParams()[2]
         if depth < best:
             best = depth

@@ -492,7 +492,7 @@ class WorldControl:
                 auto_disable_bodies=False,
                 sor_pgs_precon_iters=0,
                 sor_pgs_iters=p.solver_iterations,
-                sor_pgs_w=SOR_PGS_W,
+                sor_pgs_w=p.sor,
                 sor_pgs_rms_error_tol=0.0,
                 contact_surface_layer=p.contact_surface_layer,
                 contact_max_correcting_vel=p.contact_max_correcting_vel,
@@ -520,7 +520,7 @@ class WorldControl:
     ) -> List[str]:
         """Apply to the live world between steps (sim time stays continuous); ``iterations`` is
         ode_config.sor_pgs_iters. Returns warnings for the ode_config settings the simulator
-        keeps fixed (auto-disable, preconditioning, SOR factor, RMS tolerance)."""
+        keeps fixed (auto-disable, preconditioning, RMS tolerance)."""
         rate = update_rate(max_update_rate, "max_update_rate")
         integer(sor_pgs_precon_iters, "sor_pgs_precon_iters")
         finite(sor_pgs_w, "sor_pgs_w")
@@ -535,6 +535,7 @@ class WorldControl:
             contact_surface_layer=finite(contact_surface_layer, "contact_surface_layer"),
             contact_max_correcting_vel=finite(contact_max_correcting_vel, "contact_max_correcting_vel"),
             max_contacts=max_contacts,
+            sor=finite(sor_pgs_w, "sor_pgs_w"),
         )
         try:
             params.validate()
@@ -550,8 +551,6 @@ class WorldControl:
             warnings.append("auto_disable_bodies is not supported: bodies stay enabled")
         if sor_pgs_precon_iters != 0:
             warnings.append("sor_pgs_precon_iters is not supported: ignored")
-        if sor_pgs_w != SOR_PGS_W:
-            warnings.append(f"sor_pgs_w is fixed at {SOR_PGS_W}: ignored")
         if sor_pgs_rms_error_tol != 0:
             warnings.append("sor_pgs_rms_error_tol is not supported: ignored")
         self.physics.set_params(params)

@@ -7,6 +7,9 @@ from dataclasses import dataclass
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from turtle_sim_ode.models.builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
+from turtle_sim_ode.models.includes import resolve_includes
+from turtle_sim_ode.models.meshes import load_meshes, uses_meshes
+from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.sdf import World, _rpy, parse_sdf_model
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
@@ -71,6 +74,8 @@ class Simulation(WorldControl):
         # The loaded world's sun direction and sky colour for the cameras (None: Gazebo's defaults).
         self.light_direction: Optional[Vec3] = None
         self.sky_colour: Optional[Tuple[float, float, float]] = None
+        # Where model://, package:// and file:// names are read from (None: no file is read; a mesh is refused).
+        self.resources: Optional[ResourcePaths] = None
 
     @property
     def sim_time(self) -> float:
@@ -83,10 +88,16 @@ class Simulation(WorldControl):
 
     # --- models ---------------------------------------------------------------------------
     def spawn_model(
-        self, name: str, robot: RobotModel, pose: SpawnPose = (0, 0, 0, 0, 0, 0), reference_frame: str = ""
+        self,
+        name: str,
+        robot: RobotModel,
+        pose: SpawnPose = (0, 0, 0, 0, 0, 0),
+        reference_frame: str = "",
+        base: Optional[str] = None,
     ) -> List[str]:
         """Build ``robot`` as model ``name``, with its plugins and sensors, with its model frame at ``pose`` relative to
-        ``reference_frame`` (see world.control); return warnings.
+        ``reference_frame`` (see world.control); return warnings. Its mesh files are read through ``resources``
+        (relative names against ``base``, the folder of the file it came from).
 
         Raises ModelError for a bad name or model, WorldError for a bad pose or frame; the
         world is left as it was.
@@ -97,6 +108,8 @@ class Simulation(WorldControl):
             raise ModelError(f"model name '{name}' must not contain '{SCOPE}'")
         if name in self.models:
             raise ModelError(f"a model named '{name}' already exists")
+        if uses_meshes(robot):
+            load_meshes(robot, self.resources, base)
         sensors = model_sensors(robot)
         model = build_model(self.physics, robot, self._spawn_pose(pose, reference_frame))
         model.name = name
@@ -173,11 +186,16 @@ class Simulation(WorldControl):
         self.light_direction, self.sky_colour = world.light_direction, world.background
         self.max_update_rate = rate
         warnings = list(world.warnings)
+        includes = world.includes
         try:
-            for entry in world.models:
+            models = list(world.models)
+            if self.resources is not None and includes:
+                included, includes = resolve_includes(world, self.resources)
+                models += included
+            for entry in models:
                 warnings.extend(
                     f"model '{entry.name}': {warning}"
-                    for warning in self.spawn_model(entry.name, entry.model, entry.spawn_pose)
+                    for warning in self.spawn_model(entry.name, entry.model, entry.spawn_pose, base=entry.base)
                 )
         except Exception:
             for name in list(self.models):
@@ -186,7 +204,7 @@ class Simulation(WorldControl):
             self.max_update_rate = old_rate
             self.light_direction, self.sky_colour = None, None
             raise
-        for include in world.includes:
+        for include in includes:
             named = f" (model '{include.name}')" if include.name else ""
             warnings.append(f"cannot resolve {include.uri}{named}: not spawned")
         warnings.extend(

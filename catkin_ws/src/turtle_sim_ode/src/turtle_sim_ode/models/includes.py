@@ -1,0 +1,62 @@
+"""A world's <include>s resolved as Gazebo resolves them: ``model://NAME`` is the folder NAME on the model path
+(GAZEBO_MODEL_PATH and the gazebo_model_path exports of the ROS packages), whose model.config names the model's SDF
+file (the one of the highest <sdf version> this simulator reads); the <include>'s <name>, <pose> and <static>
+override the model's own. Files are read through models.resources (only under the package and model paths)."""
+from __future__ import annotations
+
+from typing import List, Optional, Set, Tuple
+
+from turtle_sim_ode.models.resources import ResourcePaths
+from turtle_sim_ode.models.sdf import NEWEST_VERSION, Include, World, WorldModel, parse_included_model
+from turtle_sim_ode.models.text import ModelError, parse_xml
+from turtle_sim_ode.models.urdf import Pose
+
+
+def _version(text: Optional[str]) -> Tuple[int, ...]:
+    try:
+        return tuple(int(part) for part in (text or "0").split("."))
+    except ValueError:
+        return (0,)
+
+
+def model_file(paths: ResourcePaths, name: str) -> Tuple[str, str]:
+    """(folder, SDF text) of Gazebo model ``name``; ModelError naming it where it cannot be found or read."""
+    folder = paths.model_folder(name)
+    if folder is None:
+        raise ModelError(f"cannot resolve model://{name}: no such model on the model path {paths.model_paths}")
+    _, config = paths.read("model.config", base=folder)
+    root = parse_xml(config.decode("utf-8", "replace"), f"model://{name}/model.config")
+    candidates = [
+        (_version(element.get("version")), (element.text or "").strip())
+        for element in root.findall("sdf")
+        if (element.text or "").strip() and _version(element.get("version")) <= NEWEST_VERSION
+    ]
+    if not candidates:
+        raise ModelError(f"model://{name}/model.config names no <sdf> file of version <= 1.7")
+    _, sdf_name = max(candidates)
+    _, text = paths.read(sdf_name, base=folder)
+    return folder, text.decode("utf-8", "replace")
+
+
+def resolve_includes(world: World, paths: ResourcePaths) -> Tuple[List[WorldModel], List[Include]]:
+    """The world's model:// includes as models to spawn, and the includes left unresolved (other URI schemes);
+    ModelError naming the include where one cannot be read or parsed, or where two models get one name."""
+    names: Set[str] = {model.name for model in world.models}
+    models: List[WorldModel] = []
+    left: List[Include] = []
+    for include in world.includes:
+        if not include.uri.startswith("model://"):
+            left.append(include)
+            continue
+        name = include.uri[len("model://") :].strip("/")
+        try:
+            folder, text = model_file(paths, name)
+            model, own_pose = parse_included_model(text, include.name, include.static)
+        except ModelError as error:
+            raise ModelError(f"<include> {include.uri}: {error}") from None
+        if model.name in names:
+            raise ModelError(f"<include> {include.uri}: two models are named '{model.name}'")
+        names.add(model.name)
+        pose = include.pose if include.pose != Pose() else own_pose
+        models.append(WorldModel(model.name, pose, model, folder))
+    return models, left
