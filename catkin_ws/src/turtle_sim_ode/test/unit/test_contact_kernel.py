@@ -65,6 +65,19 @@ def test_turtlebot_circle_is_bitwise_equal():
     assert with_kernel == in_python
 
 
+def tilted_body(physics: PhysicsWorld, geom: ode.GeomObject, position, surface) -> ode.Body:
+    """A body of 1 kg (a 0.1 m ball's inertia), tilted, carrying ``geom`` with ``surface``: the scenarios' pieces."""
+    body = ode.Body(physics.world)
+    mass = ode.Mass()
+    mass.setSphereTotal(1.0, 0.1)
+    body.setMass(mass)
+    body.setPosition(position)
+    body.setQuaternion((0.96, 0.1, 0.2, 0.1))
+    geom.setBody(body)
+    physics.register_geom(geom, surface)
+    return body
+
+
 def _pile(kernel: bool, change: Callable[[PhysicsWorld, dict], None]) -> Trace:
     """Boxes (up to 8 contact points a pair, cut to max_contacts), spheres and a capsule dropped onto a static
     table and each other, one model self-colliding with an excluded pair, a watched box and watched ground;
@@ -79,14 +92,7 @@ def _pile(kernel: bool, change: Callable[[PhysicsWorld, dict], None]) -> Trace:
     names = {physics.ground: "ground", table: "table"}
 
     def add(space, geom, position, surface=None):
-        body = ode.Body(physics.world)
-        mass = ode.Mass()
-        mass.setSphereTotal(1.0, 0.1)
-        body.setMass(mass)
-        body.setPosition(position)
-        body.setQuaternion((0.96, 0.1, 0.2, 0.1))
-        geom.setBody(body)
-        physics.register_geom(geom, surface)
+        body = tilted_body(physics, geom, position, surface)
         bodies.append(body)
         names[geom] = "geom %d" % len(bodies)
         return body, geom
@@ -179,15 +185,8 @@ def _gazebo_surfaces(kernel: bool) -> Trace:
     names = {physics.ground: "ground", table: "table"}
 
     def add(geom, position, surface, velocity=(0.0, 0.0, 0.0)):
-        body = ode.Body(physics.world)
-        mass = ode.Mass()
-        mass.setSphereTotal(1.0, 0.1)
-        body.setMass(mass)
-        body.setPosition(position)
-        body.setQuaternion((0.96, 0.1, 0.2, 0.1))
+        body = tilted_body(physics, geom, position, surface)
         body.setLinearVel(velocity)
-        geom.setBody(body)
-        physics.register_geom(geom, surface)
         bodies.append(body)
         names[geom] = "geom %d" % len(bodies)
         return geom
