@@ -105,7 +105,7 @@ class BarePyOde:
         world, ground, keep = self.world, self.ground, self.contact_joints.append
         collide, contact_joint = self._collide, self._contact_joint
         self.contact_joints.clear()  # dropping a wrapper destroys its joint
-        for geom, body, (mode, mu, mu2, erp, cfm), kept in self.ground_pairs:
+        for geom, body, (mode, _side, _adjust, mu, mu2, erp, cfm, *_rest), kept in self.ground_pairs:
             for contact in collide(ground, geom)[:kept]:
                 contact.setMode(mode)
                 contact.setMu(mu)
