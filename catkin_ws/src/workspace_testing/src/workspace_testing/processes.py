@@ -4,17 +4,42 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
+from typing import List
+
+
+def descendants(pid: int) -> List[int]:
+    """Every process below ``pid`` (Linux /proc), children before their own children."""
+    found: List[int] = []
+    parents = [pid]
+    while parents:
+        parent = parents.pop()
+        try:
+            with open(f"/proc/{parent}/task/{parent}/children") as children:
+                for child in (int(text) for text in children.read().split()):
+                    found.append(child)
+                    parents.append(child)
+        except (FileNotFoundError, ProcessLookupError, ValueError):
+            continue
+    return found
 
 
 def stop_group(process: subprocess.Popen, grace: float = 15.0) -> None:
     """SIGINT the process group (roslaunch and rosrun pass it on to their nodes, which shut down cleanly), then
-    SIGKILL what is left after ``grace`` seconds."""
+    SIGKILL what is left after ``grace`` seconds. roslaunch starts each node in a process group of its own, so the
+    processes below the group are noted first and any still alive at the end are killed too: a node that outlived
+    its roslaunch would otherwise be left behind."""
+    below = descendants(process.pid)
     for sig, wait in ((signal.SIGINT, grace), (signal.SIGKILL, 5.0)):
         try:
             os.killpg(process.pid, sig)
             process.wait(wait)
-            return
+            break
         except ProcessLookupError:
-            return
+            break
         except subprocess.TimeoutExpired:
             continue
+    for pid in below:
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass

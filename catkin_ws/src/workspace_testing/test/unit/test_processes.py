@@ -1,0 +1,30 @@
+"""stop_group stops a process group and whatever below it left the group, as roslaunch's nodes do."""
+import os
+import subprocess
+import time
+
+from workspace_testing.processes import descendants, stop_group
+
+
+def alive(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().split(")")[-1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
+def test_a_child_in_a_session_of_its_own_is_stopped_too() -> None:
+    # The shell ignores SIGINT (as a node stuck in shutdown would), and its child left the group with setsid.
+    process = subprocess.Popen(
+        ["bash", "-c", "trap '' INT; setsid sleep 60 & wait"], start_new_session=True, stdout=subprocess.DEVNULL
+    )
+    deadline = time.monotonic() + 10
+    while len(descendants(process.pid)) < 1 and time.monotonic() < deadline:
+        time.sleep(0.05)
+    below = descendants(process.pid)
+    assert below and all(os.getpgid(pid) != process.pid for pid in below if alive(pid))
+    stop_group(process, grace=0.5)
+    time.sleep(0.2)
+    assert process.poll() is not None
+    assert not [pid for pid in below if alive(pid)]
