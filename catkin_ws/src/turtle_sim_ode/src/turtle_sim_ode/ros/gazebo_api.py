@@ -23,6 +23,7 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.ros.names import legal_base_name, legal_name, shorten_names_in, shown
 from turtle_sim_ode.ros.pacing import pacing_problem
+from turtle_sim_ode.ros.throttle import logwarn_every
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.values import WorldError
 
@@ -246,7 +247,7 @@ class GazeboApi:
             with self._lock:
                 self._apply_model_state(state)
         except (WorldError, ValueError) as error:
-            rospy.logwarn_throttle(5.0, "/gazebo/set_model_state: %s" % error)
+            logwarn_every(5.0, "set_model_state", "/gazebo/set_model_state: %s" % error)
 
     def _get_model_properties(self, request, response) -> None:
         for field, value in self._sim.model_properties(request.model_name).items():
@@ -285,7 +286,7 @@ class GazeboApi:
             with self._lock:
                 self._apply_link_state(state)
         except (WorldError, ValueError) as error:
-            rospy.logwarn_throttle(5.0, "/gazebo/set_link_state: %s" % error)
+            logwarn_every(5.0, "set_link_state", "/gazebo/set_link_state: %s" % error)
 
     def _get_link_properties(self, request, response) -> None:
         properties = self._sim.link_properties(request.link_name)
@@ -453,7 +454,7 @@ def known_topic_types() -> Dict[str, str]:
         in_use = {topic for topic, nodes in list(publishers) + list(subscribers) if nodes}
         return {topic: kind for topic, kind in master.getTopicTypes() if topic in in_use}
     except Exception as error:  # noqa: BLE001 - a spawn must not fail for a lookup: its own topics are still checked
-        rospy.logwarn_throttle(10.0, "cannot ask the master for topic types: %s" % error)
+        logwarn_every(10.0, "topic_types", "cannot ask the master for topic types: %s" % error)
         return {}
 
 

@@ -31,6 +31,7 @@ from turtle_sim_ode.ros.periodic import (
     topic_prefix,
 )
 from turtle_sim_ode.ros.settings import SimulatorSettings
+from turtle_sim_ode.ros.throttle import logwarn_every
 from turtle_sim_ode.ros.wire import (
     ImuPacker,
     JointStatePacker,
@@ -156,9 +157,10 @@ class DriveInterface(Periodic):
         self._sim = sim
         self._tf = tf_broadcaster if config.publish_tf and settings.publish_tf else None
         prefix_tf = tf_prefix(namespace or config.robot_namespace)
-        self._base_frame = config.base_frame or settings.base_frame
+        base_frame = config.base_frame or settings.base_frame
+        self._base_frame = base_frame.lstrip("/")  # the link; a leading "/" only keeps the tf_prefix off
         self._odom_frame = resolve_frame(prefix_tf, config.odometry_frame or settings.odom_frame)
-        published_base = resolve_frame(prefix_tf, self._base_frame)
+        published_base = resolve_frame(prefix_tf, base_frame)
         self._world_odometry = config.odometry_source == "world"
         self._reset_requested = False
         prefix = topic_prefix(namespace or config.robot_namespace)
@@ -183,13 +185,15 @@ class DriveInterface(Periodic):
     def _on_velocity(self, twist: Twist) -> None:
         linear, angular = twist.linear.x, twist.angular.z
         if not self.robot.drive.set_command(linear, angular, self._sim.sim_time):
-            rospy.logwarn_throttle(
+            logwarn_every(
                 5.0,
+                self.name + "/not_finite",
                 "%s: velocity command ignored, not finite: linear.x [%s] angular.z [%s]" % (self.name, linear, angular),
             )
         elif abs(linear) > self.robot.params.max_linear or abs(angular) > self.robot.params.max_angular:
-            rospy.logwarn_throttle(
+            logwarn_every(
                 5.0,
+                self.name + "/clamped",
                 "%s: velocity command clamped: linear.x [%s] angular.z [%s] to max_linear [%s] max_angular [%s]"
                 % (self.name, linear, angular, self.robot.params.max_linear, self.robot.params.max_angular),
             )
