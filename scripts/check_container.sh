@@ -185,7 +185,38 @@ image_id() {
   esac
 }
 previous_image=$(image_id "$image")
-build_args=(-f docker/Dockerfile -t "$image" --build-arg BASE=debian:bookworm)
+
+# A machine behind a TLS-inspecting proxy trusts that proxy's CA (/usr/local/share/ca-certificates); the image must
+# too, or pip cannot reach PyPI in it (install_deps.sh installs xacro from there). The base image gets this machine's
+# extra CA certificates, its CA bundle and a pip.conf naming that bundle, as a layer tagged by their hash, so the
+# engine's layer cache survives repeated runs. Machines without extra CAs build on debian:bookworm itself.
+build_base=debian:bookworm
+extra_cas=(/usr/local/share/ca-certificates/*.crt)
+if [ -e "${extra_cas[0]}" ]; then
+  digest=$(cat "${extra_cas[@]}" /etc/ssl/certs/ca-certificates.crt | sha256sum | cut -c1-12)
+  trusted_base=localhost/turtle_sim_ode-base:bookworm-$digest
+  if [ -z "$(image_id "$trusted_base")" ]; then
+    trust_dir=$(mktemp -d /tmp/check_container_trust.XXXXXX)
+    mkdir "$trust_dir/ca"
+    cp "${extra_cas[@]}" "$trust_dir/ca/"
+    cp /etc/ssl/certs/ca-certificates.crt "$trust_dir/host-ca-certificates.crt"
+    printf '[global]\ncert = /etc/ssl/host-ca-certificates.crt\n' > "$trust_dir/pip.conf"
+    printf 'FROM %s\nCOPY ca/ /usr/local/share/ca-certificates/\nCOPY host-ca-certificates.crt /etc/ssl/\nCOPY pip.conf /etc/pip.conf\n' \
+      "$base_image" > "$trust_dir/Containerfile"
+    case "$engine" in
+      docker) docker build -f "$trust_dir/Containerfile" -t "$trusted_base" "$trust_dir" ;;
+      podman) podman build --format docker --pull=never -f "$trust_dir/Containerfile" -t "$trusted_base" "$trust_dir" ;;
+      buildah)
+        buildah bud --format docker --isolation chroot --pull=never -f "$trust_dir/Containerfile" -t "$trusted_base" \
+          "$trust_dir"
+        ;;
+    esac
+    rm -rf "$trust_dir"
+  fi
+  build_base=$trusted_base
+  log "base image with this machine's CA certificates: $trusted_base"
+fi
+build_args=(-f docker/Dockerfile -t "$image" --build-arg BASE="$build_base")
 case "$engine" in
   docker) docker build "${build_args[@]}" . ;;
   podman) podman build --format docker --layers --force-rm --pull=never "${build_args[@]}" . ;;
