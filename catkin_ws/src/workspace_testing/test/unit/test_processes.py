@@ -19,11 +19,15 @@ def test_a_child_in_a_session_of_its_own_is_stopped_too() -> None:
     process = subprocess.Popen(
         ["bash", "-c", "trap '' INT; setsid sleep 60 & wait"], start_new_session=True, stdout=subprocess.DEVNULL
     )
+
+    def left_the_group() -> list:
+        return [pid for pid in descendants(process.pid) if alive(pid) and os.getpgid(pid) != process.pid]
+
     deadline = time.monotonic() + 10
-    while len(descendants(process.pid)) < 1 and time.monotonic() < deadline:
+    while not left_the_group() and time.monotonic() < deadline:  # until setsid has run in the child
         time.sleep(0.05)
-    below = descendants(process.pid)
-    assert below and all(os.getpgid(pid) != process.pid for pid in below if alive(pid))
+    below = left_the_group()
+    assert below
     stop_group(process, grace=0.5)
     time.sleep(0.2)
     assert process.poll() is not None
