@@ -651,7 +651,8 @@ def _keep_sane(model: BuiltModel, bodies: Dict[str, ode.Body], time_step: float)
     warnings = []
     for link, body in bodies.items():
         mass = body.getMass()
-        floor = sanity.min_moment(mass.mass, model.extent(body))
+        reach = model.extent(body)
+        floor = sanity.min_moment(mass.mass, reach)
         lowest = sanity.principal_moments(mass.I)[0]
         if lowest < floor:
             diagonal = all(mass.I[i][j] == 0 for i in range(3) for j in range(3) if i != j)
@@ -681,7 +682,7 @@ def _keep_sane(model: BuiltModel, bodies: Dict[str, ode.Body], time_step: float)
             body.setMass(adjusted)
             warnings.append(
                 f"link '{link}': smallest moment of inertia {lowest:.3g} kg m^2 is too small for a {mass.mass:g} kg "
-                f"body reaching {model.extent(body):.3g} m (ODE would spin it up); raised to {floor:.3g}"
+                f"body reaching {reach:.3g} m (ODE would spin it up); raised to {floor:.3g}"
             )
     for index, (handle, coefficient) in enumerate(model.damping_entries()):
         stable = sanity.stable_damping(coefficient, handle.moved_inertia(), time_step)

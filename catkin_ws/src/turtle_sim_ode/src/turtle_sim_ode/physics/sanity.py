@@ -72,14 +72,6 @@ def number(
     return value
 
 
-def magnitude(value: Any, what: str, limit: float, error: Type[Exception] = ValueError) -> float:
-    """A finite number of magnitude at most ``limit``."""
-    value = number(value, what, error=error)
-    if abs(value) > limit:
-        raise error(f"{what} must be at most {limit:g} in magnitude, got {value!r}")
-    return value
-
-
 def unit_vector(values: Sequence[float], what: str, error: Type[Exception] = ValueError) -> Vec3:
     """Three finite numbers scaled to length 1 (scaled down first, so 1e308 does not overflow); not all zero."""
     x, y, z = (number(v, what, error=error) for v in values)
@@ -89,10 +81,6 @@ def unit_vector(values: Sequence[float], what: str, error: Type[Exception] = Val
     x, y, z = x / scale, y / scale, z / scale
     norm = math.sqrt(x * x + y * y + z * z)
     return (x / norm, y / norm, z / norm)
-
-
-def body_mass(mass: float, what: str, error: Type[Exception] = ValueError) -> float:
-    return number(mass, f"{what}: mass (kg)", MIN_MASS, MAX_MASS, error)
 
 
 def min_moment(mass: float, extent: float) -> float:
@@ -140,10 +128,6 @@ def hinge_stop(value: float, what: str, error: Type[Exception] = ValueError) -> 
             f"(use ±inf for no stop, or a continuous joint)"
         )
     return value
-
-
-def time_step(value: Any, what: str = "time_step", error: Type[Exception] = ValueError) -> float:
-    return number(value, f"{what} (s)", MIN_TIME_STEP, MAX_TIME_STEP, error)
 
 
 def update_rate(value: Any, what: str = "max_update_rate", error: Type[Exception] = ValueError) -> float:

@@ -381,11 +381,12 @@ class WorldControl:
             )
         if mass < sanity.MIN_MASS:
             raise WorldError(f"mass must be at least {sanity.MIN_MASS:g} kg, got {mass}")
-        floor = sanity.min_moment(mass, model.extent(body))
+        reach = model.extent(body)
+        floor = sanity.min_moment(mass, reach)
         lowest = sanity.principal_moments(matrix)[0]
         if lowest < floor:
             raise WorldError(
-                f"inertia of link '{name}' is too small for a {mass:g} kg body reaching {model.extent(body):.3g} m: "
+                f"inertia of link '{name}' is too small for a {mass:g} kg body reaching {reach:.3g} m: "
                 f"its smallest principal moment {lowest:.3g} kg m^2 must be at least {floor:.3g} (ODE would spin "
                 f"the body up and let it sink through the ground)"
             )
