@@ -4,6 +4,7 @@
  * Python side uses where this library is not built, but on rays (u, v, 1) whose parameter is the depth, and with
  * the near clip on depth (numpy: on the distance along the ray). */
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -70,8 +71,9 @@ static double hitBox(const double* o, const double* d, const double* half, doubl
       }
       continue;
     }
-    double t1 = (-half[i] - o[i]) / d[i];
-    double t2 = (half[i] - o[i]) / d[i];
+    double inverse = 1.0 / d[i];
+    double t1 = (-half[i] - o[i]) * inverse;
+    double t2 = (half[i] - o[i]) * inverse;
     if (t1 > t2)
     {
       double swap = t1;
@@ -233,30 +235,69 @@ static uint8_t channel(double value)
   return (uint8_t)(value <= 0.0 ? 0.0 : value >= 1.0 ? 255.0 : value * 255.0 + 0.5);
 }
 
-/* Render ``count`` primitives seen from ``origin`` with ``rotation`` (world from optical, row-major), one ray through
- * each pixel's centre: (u, v, 1) in the optical frame with u = (i - cx) / focal, v = (j - cy) / focal, so that a
- * ray's parameter at a hit is the hit's depth along the optical axis. Fills ``distance`` (that depth, INFINITY
- * where nothing is hit at a depth within (tMin, far]), ``depth`` (the same as float, NAN there) and ``rgb`` (shaded
- * colours, ``sky`` there). Returns the number of ray tests made. */
-long tso_render(int width, int height, const double* origin, const double* rotation, int count,
-                const double* primitives, double tMin, double far, double focal, double cx, double cy,
-                const double* light, double ambient, const double* sky, double* distance, float* depth, uint8_t* rgb)
+/* What tso_render draws and where it writes: see tso_render. */
+typedef struct
 {
+  int width, height;
+  const double* origin;
+  const double* rotation;
+  int count;
+  const double* primitives;
+  double tMin, far, focal, cx, cy;
+  const double* light;
+  double ambient;
+  const double* sky;
+  double* distance;
+  float* depth;
+  uint8_t* rgb;
+} Scene;
+
+/* ``colour`` lit by the scene's ambient light and its sun on a surface of unit ``normal`` (world frame). */
+static void shadeInto(const Scene* s, const double* colour, const double* normal, uint8_t* out)
+{
+  double lit = dot3(normal, s->light);
+  double shade = s->ambient + (1.0 - s->ambient) * (lit <= 0.0 ? 0.0 : lit >= 1.0 ? 1.0 : lit);
+  out[0] = channel(colour[0] * shade);
+  out[1] = channel(colour[1] * shade);
+  out[2] = channel(colour[2] * shade);
+}
+
+/* One thread's share of a picture: its job (a Scene or a Cloud), the rows [rowBegin, rowEnd), and what it counted
+ * (ray tests; points left out of the cloud). */
+typedef struct
+{
+  const void* job;
+  int rowBegin, rowEnd;
+  long count;
+} Band;
+
+/* The band's rows of the picture, every primitive, then the sky where nothing was hit within far. */
+static void* renderBand(void* arg)
+{
+  Band* band = (Band*)arg;
+  const Scene* s = (const Scene*)band->job;
+  const int width = s->width;
+  const double* origin = s->origin;
+  const double* rotation = s->rotation;
+  const double invFocal = 1.0 / s->focal;
+  const double tMin = s->tMin;
+  /* Local copies: stores through the uint8_t pointer could alias anything the struct points to. */
+  double* restrict distance = s->distance;
+  uint8_t* restrict rgb = s->rgb;
   long tests = 0;
-  int pixels = width * height;
-  for (int p = 0; p < pixels; ++p)
+  for (int p = band->rowBegin * width; p < band->rowEnd * width; ++p)
   {
     distance[p] = INFINITY;
   }
-  for (int k = 0; k < count; ++k)
+  for (int k = 0; k < s->count; ++k)
   {
-    const double* row = primitives + (long)k * kStride;
+    const double* row = s->primitives + (long)k * kStride;
     int type = (int)row[0];
     const double* position = row + kPosition;
     const double* shape = row + kRotation; /* world from shape */
     const double* params = row + kParams;
     const double* colour = row + kColour;
-    int i0 = 0, i1 = width, j0 = 0, j1 = height;
+    int i0 = 0, i1 = width, j0 = band->rowBegin, j1 = band->rowEnd;
     double local[9]; /* shape from optical: shape^T rotation */
     double start[3]; /* the origin in the shape's frame */
     if (type != kPlane)
@@ -286,14 +327,14 @@ long tso_render(int width, int height, const double* origin, const double* rotat
         half[2] = params[1] / 2.0 + (type == kCapsule ? params[0] : 0.0);
       }
       int box[4];
-      if (!pixelBox(c, local, half, tMin, far, focal, cx, cy, width, height, box))
+      if (!pixelBox(c, local, half, tMin, s->far, s->focal, s->cx, s->cy, width, s->height, box))
       {
         continue;
       }
       i0 = box[0];
       i1 = box[1];
-      j0 = box[2];
-      j1 = box[3];
+      j0 = box[2] > j0 ? box[2] : j0;
+      j1 = box[3] < j1 ? box[3] : j1;
     }
     else
     {
@@ -306,9 +347,24 @@ long tso_render(int width, int height, const double* origin, const double* rotat
       start[2] = origin[2];
     }
     double planeStart = type == kPlane ? params[0] - dot3(shape, start) : 0.0;
+    /* A flat face has one shade: the plane's, or a box face's (2 * axis + (1 on the positive side)). */
+    uint8_t flat[6][3];
+    if (type == kPlane)
+    {
+      shadeInto(s, colour, shape, flat[0]);
+    }
+    else if (type == kBox)
+    {
+      for (int face = 0; face < 6; ++face)
+      {
+        double sign = face % 2 ? 1.0 : -1.0;
+        double world[3] = { sign * shape[face / 2], sign * shape[3 + face / 2], sign * shape[6 + face / 2] };
+        shadeInto(s, colour, world, flat[face]);
+      }
+    }
     for (int j = j0; j < j1; ++j)
     {
-      double v = (j - cy) / focal;
+      double v = (j - s->cy) * invFocal;
       double rowBase[3];
       for (int a = 0; a < 3; ++a)
       {
@@ -317,7 +373,7 @@ long tso_render(int width, int height, const double* origin, const double* rotat
       for (int i = i0; i < i1; ++i)
       {
         int p = j * width + i;
-        double u = (i - cx) / focal;
+        double u = (i - s->cx) * invFocal;
         double d[3]; /* the pixel's ray (u, v, 1) in the optical frame, in the shape's frame: t is its depth */
         for (int a = 0; a < 3; ++a)
         {
@@ -364,66 +420,138 @@ long tso_render(int width, int height, const double* origin, const double* rotat
           continue;
         }
         distance[p] = t;
-        double world[3];
+        uint8_t* out = rgb + 3 * p;
         if (type == kPlane)
         {
-          world[0] = n[0];
-          world[1] = n[1];
-          world[2] = n[2];
+          memcpy(out, flat[0], 3);
+        }
+        else if (type == kBox)
+        {
+          int axis = n[0] != 0.0 ? 0 : n[1] != 0.0 ? 1 : 2;
+          memcpy(out, flat[2 * axis + (n[axis] > 0.0)], 3);
         }
         else
         {
+          double world[3];
           for (int a = 0; a < 3; ++a)
           {
             world[a] = shape[3 * a] * n[0] + shape[3 * a + 1] * n[1] + shape[3 * a + 2] * n[2];
           }
+          shadeInto(s, colour, world, out);
         }
-        double lit = dot3(world, light);
-        double shade = ambient + (1.0 - ambient) * (lit <= 0.0 ? 0.0 : lit >= 1.0 ? 1.0 : lit);
-        rgb[3 * p] = channel(colour[0] * shade);
-        rgb[3 * p + 1] = channel(colour[1] * shade);
-        rgb[3 * p + 2] = channel(colour[2] * shade);
       }
     }
   }
-  for (int p = 0; p < pixels; ++p)
+  for (int p = band->rowBegin * width; p < band->rowEnd * width; ++p)
   {
     double z = distance[p];
-    if (z <= far)
+    if (z <= s->far)
     {
-      depth[p] = (float)z;
+      s->depth[p] = (float)z;
     }
     else
     {
       distance[p] = INFINITY;
-      depth[p] = NAN;
-      rgb[3 * p] = channel(sky[0]);
-      rgb[3 * p + 1] = channel(sky[1]);
-      rgb[3 * p + 2] = channel(sky[2]);
+      s->depth[p] = NAN;
+      rgb[3 * p] = channel(s->sky[0]);
+      rgb[3 * p + 1] = channel(s->sky[1]);
+      rgb[3 * p + 2] = channel(s->sky[2]);
     }
   }
-  return tests;
+  band->count = tests;
+  return NULL;
 }
 
-/* gazebo_ros_openni_kinect's depth image and organised cloud from a rendering's ``depth`` and ``rgb``: ``depthOut``
- * keeps the depths within (cutoff, cutoffMax), NAN elsewhere; ``cloud`` gets 32 bytes a point: x, y, z (float32,
- * optical frame, NAN outside the cutoffs), 4 bytes of padding, b, g, r, 0, and 12 of padding; the padding bytes
- * are left as they are (zeros: the caller's buffer is zeroed once and reused). Returns the number of NAN points. */
-long tso_cloud(int width, int height, const float* depth, const uint8_t* rgb, double focal, double cx, double cy,
-               double cutoff, double cutoffMax, float* depthOut, uint8_t* cloud)
+enum
 {
-  long missing = 0;
-  for (int j = 0; j < height; ++j)
+  kMaxThreads = 16,
+  kMinRowsPerThread = 16 /* below this a thread costs more than it saves */
+};
+
+/* Runs ``work`` on ``job`` in up to ``threads`` bands of ``height`` rows: the calling thread takes the first, a new
+ * thread each other band (a thread that cannot be started leaves its band to the calling thread). Returns the sum
+ * of the bands' counts. */
+static long runBands(int threads, int height, void* (*work)(void*), const void* job)
+{
+  int wanted = height / kMinRowsPerThread;
+  int count = threads < wanted ? threads : wanted;
+  count = count < 1 ? 1 : count > kMaxThreads ? kMaxThreads : count;
+  Band bands[kMaxThreads];
+  pthread_t ids[kMaxThreads];
+  int started[kMaxThreads] = { 0 };
+  for (int b = 0; b < count; ++b)
   {
-    double y = (j - cy) / focal;
-    for (int i = 0; i < width; ++i)
+    bands[b].job = job;
+    bands[b].rowBegin = (int)((long)height * b / count);
+    bands[b].rowEnd = (int)((long)height * (b + 1) / count);
+    bands[b].count = 0;
+  }
+  for (int b = 1; b < count; ++b)
+  {
+    started[b] = pthread_create(&ids[b], NULL, work, &bands[b]) == 0;
+  }
+  work(&bands[0]);
+  for (int b = 1; b < count; ++b)
+  {
+    if (started[b])
     {
-      long p = (long)j * width + i;
-      float z = depth[p];
+      pthread_join(ids[b], NULL);
+    }
+    else
+    {
+      work(&bands[b]);
+    }
+  }
+  long total = 0;
+  for (int b = 0; b < count; ++b)
+  {
+    total += bands[b].count;
+  }
+  return total;
+}
+
+/* Render ``count`` primitives seen from ``origin`` with ``rotation`` (world from optical, row-major), one ray through
+ * each pixel's centre: (u, v, 1) in the optical frame with u = (i - cx) / focal, v = (j - cy) / focal, so that a
+ * ray's parameter at a hit is the hit's depth along the optical axis. Fills ``distance`` (that depth, INFINITY
+ * where nothing is hit at a depth within (tMin, far]), ``depth`` (the same as float, NAN there) and ``rgb`` (shaded
+ * colours, ``sky`` there), in up to ``threads`` bands of rows at once. Returns the number of ray tests made. */
+long tso_render(int width, int height, const double* origin, const double* rotation, int count,
+                const double* primitives, double tMin, double far, double focal, double cx, double cy,
+                const double* light, double ambient, const double* sky, double* distance, float* depth, uint8_t* rgb,
+                int threads)
+{
+  Scene scene = { width, height, origin, rotation, count, primitives, tMin,  far, focal,
+                  cx,    cy,     light,  ambient,  sky,   distance,   depth, rgb };
+  return runBands(threads, height, renderBand, &scene);
+}
+
+/* What tso_cloud reads and writes: see tso_cloud. */
+typedef struct
+{
+  int width;
+  const float* depth;
+  const uint8_t* rgb;
+  double focal, cx, cy, cutoff, cutoffMax;
+  float* depthOut;
+  uint8_t* cloud;
+} Cloud;
+
+static void* cloudBand(void* arg)
+{
+  Band* band = (Band*)arg;
+  const Cloud* c = (const Cloud*)band->job;
+  long missing = 0;
+  for (int j = band->rowBegin; j < band->rowEnd; ++j)
+  {
+    double y = (j - c->cy) / c->focal;
+    for (int i = 0; i < c->width; ++i)
+    {
+      long p = (long)j * c->width + i;
+      float z = c->depth[p];
       float point[3];
-      if (z > cutoff && z < cutoffMax)
+      if (z > c->cutoff && z < c->cutoffMax)
       {
-        point[0] = (float)(z * ((i - cx) / focal));
+        point[0] = (float)(z * ((i - c->cx) / c->focal));
         point[1] = (float)(z * y);
         point[2] = z;
       }
@@ -433,13 +561,26 @@ long tso_cloud(int width, int height, const float* depth, const uint8_t* rgb, do
         point[0] = point[1] = point[2] = NAN;
         ++missing;
       }
-      depthOut[p] = z;
-      uint8_t* out = cloud + 32 * p;
+      c->depthOut[p] = z;
+      uint8_t* out = c->cloud + 32 * p;
       memcpy(out, point, sizeof point);
-      out[16] = rgb[3 * p + 2];
-      out[17] = rgb[3 * p + 1];
-      out[18] = rgb[3 * p];
+      out[16] = c->rgb[3 * p + 2];
+      out[17] = c->rgb[3 * p + 1];
+      out[18] = c->rgb[3 * p];
     }
   }
-  return missing;
+  band->count = missing;
+  return NULL;
+}
+
+/* gazebo_ros_openni_kinect's depth image and organised cloud from a rendering's ``depth`` and ``rgb``: ``depthOut``
+ * keeps the depths within (cutoff, cutoffMax), NAN elsewhere; ``cloud`` gets 32 bytes a point: x, y, z (float32,
+ * optical frame, NAN outside the cutoffs), 4 bytes of padding, b, g, r, 0, and 12 of padding; the padding bytes
+ * are left as they are (zeros: the caller's buffer is zeroed once and reused). Up to ``threads`` bands of rows at
+ * once. Returns the number of NAN points. */
+long tso_cloud(int width, int height, const float* depth, const uint8_t* rgb, double focal, double cx, double cy,
+               double cutoff, double cutoffMax, float* depthOut, uint8_t* cloud, int threads)
+{
+  Cloud job = { width, depth, rgb, focal, cx, cy, cutoff, cutoffMax, depthOut, cloud };
+  return runBands(threads, height, cloudBand, &job);
 }

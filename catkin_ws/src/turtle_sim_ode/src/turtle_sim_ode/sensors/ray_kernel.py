@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ctypes
 import functools
+import os
 from typing import Dict, Iterable, Optional, Tuple
 
 import numpy as np
@@ -28,9 +29,10 @@ def library() -> Optional[ctypes.CDLL]:
     lib.tso_render.restype = ctypes.c_long
     lib.tso_render.argtypes = [ctypes.c_int, ctypes.c_int, double_p, double_p, ctypes.c_int, double_p]
     lib.tso_render.argtypes += [ctypes.c_double] * 5 + [double_p, ctypes.c_double, double_p, double_p, float_p]
-    lib.tso_render.argtypes += [byte_p]
+    lib.tso_render.argtypes += [byte_p, ctypes.c_int]
     lib.tso_cloud.restype = ctypes.c_long
-    lib.tso_cloud.argtypes = [ctypes.c_int, ctypes.c_int, float_p, byte_p] + [ctypes.c_double] * 5 + [float_p, byte_p]
+    lib.tso_cloud.argtypes = [ctypes.c_int, ctypes.c_int, float_p, byte_p] + [ctypes.c_double] * 5
+    lib.tso_cloud.argtypes += [float_p, byte_p, ctypes.c_int]
     return lib
 
 
@@ -68,9 +70,11 @@ class RayCaster:
     """Calls tso_render for one camera's image size; ``render`` fills and returns (depth as float64, INFINITY where
     nothing is hit; depth as float32, NaN there; rgb): rays through the pixel centres of a pinhole (focal, cx, cy)."""
 
-    def __init__(self, lib: ctypes.CDLL, width: int, height: int) -> None:
+    def __init__(self, lib: ctypes.CDLL, width: int, height: int, threads: Optional[int] = None) -> None:
+        """``threads``: how many bands of rows are cast at once (default: the CPUs this process may run on)."""
         self._lib = lib
         self.size = (width, height)
+        self.threads = threads if threads is not None else len(os.sched_getaffinity(0))
         self.tests = 0  # ray tests made by the last render
         # Scratch and cloud buffers, reused frame after frame (fresh megabytes cost page faults every frame).
         self._distance = np.empty((height, width))
@@ -118,6 +122,7 @@ class RayCaster:
             _pointer(distance, double),
             _pointer(depth, ctypes.c_float),
             _pointer(rgb, ctypes.c_uint8),
+            self.threads,
         )
         return distance, depth, rgb
 
@@ -140,5 +145,6 @@ class RayCaster:
             cutoff_max,
             _pointer(depth_out, ctypes.c_float),
             _pointer(cloud, ctypes.c_uint8),
+            self.threads,
         )
         return depth_out, cloud, missing
