@@ -5,7 +5,8 @@
 2. the full node unthrottled (real_time_factor 0), every sensor subscribed: RTF for 1, 5, 10 robots at 1 and 10 ms;
 3. real time (real_time_factor 1): achieved RTF and the spread of /clock intervals;
 4. roslaunch turtlebot_world.launch to the first /odom message;
-5. PyBullet (in a venv of its own under .cache/) on the same URDF: steps/s and the circle radius it drives.
+5. PyBullet (in a venv of its own under .cache/) on the same URDF: steps/s and the circle radius it drives;
+6. cameras (issue #15): an RGB-D camera's cost without ROS and in the full node, watched and nobody watching.
 
 Every ROS process runs against a master of its own on a free port and is stopped at the end, also on Ctrl-C, SIGTERM
 or error: SIGINT, then SIGKILL to its process group and to every process with its tag in the environment (roslaunch
@@ -24,12 +25,14 @@ import tempfile
 from typing import Any, Callable, Dict, Optional, Sequence
 
 # This file parses the arguments and runs the sections; they are in scripts/lib: bench_physics (1), bench_node and
-# bench_probe (2-4), bench_peer (5), bench_report (targets, table), bench_plan (run sizes).
+# bench_probe (2-4), bench_peer (5), bench_camera and bench_node (6), bench_report (targets, table), bench_plan (run
+# sizes).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from bench_node import full_node, launch_to_first_odom, real_time  # noqa: E402
+from bench_camera import camera_cost  # noqa: E402
+from bench_node import camera_node, full_node, launch_to_first_odom, real_time  # noqa: E402
 from bench_peer import peer  # noqa: E402
 from bench_physics import physics_only  # noqa: E402
-from bench_plan import FULL, QUICK, REPO  # noqa: E402
+from bench_plan import FULL, QUICK, REPO, Plan  # noqa: E402
 from bench_report import machine, table, targets  # noqa: E402
 from process_stats import cpu_ticks  # noqa: E402
 from ros_processes import Processes, ToolError  # noqa: E402
@@ -45,6 +48,12 @@ def measure(results: Dict[str, Any], key: str, title: str, run: Callable[[], Dic
     except ToolError as error:
         results[key] = {"error": str(error)}
         print("  ERROR: %s" % error, flush=True)
+
+
+def cameras(plan: Plan, processes: Processes) -> Dict[str, Any]:
+    """Section 6: bench_camera without ROS, then the node."""
+    print("  without ROS ...", flush=True)
+    return {"in_process": camera_cost(plan.physics_steps, plan.physics_repeats), "node": camera_node(plan, processes)}
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
@@ -75,6 +84,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         measure(results, "full_node", "2. full node, unthrottled", lambda: full_node(plan, processes))
         measure(results, "real_time", "3. real time", lambda: real_time(plan, processes))
         measure(results, "launch", "4. launch to first /odom", lambda: launch_to_first_odom(plan, processes))
+        measure(results, "cameras", "6. cameras", lambda: cameras(plan, processes))
     results["machine"]["load_average_at_end"] = os.getloadavg()[0]
     ticks, stolen = (end - start for end, start in zip(cpu_ticks(), ticks_at_start))
     results["machine"]["stolen_cpu_share"] = stolen / ticks if ticks else 0.0

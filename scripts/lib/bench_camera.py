@@ -34,6 +34,11 @@ CAMERA_BLOCK = """
       </camera>
       <plugin name="camera_controller" filename="libgazebo_ros_openni_kinect.so">
         <cameraName>camera</cameraName>
+        <imageTopicName>rgb/image_raw</imageTopicName>
+        <cameraInfoTopicName>rgb/camera_info</cameraInfoTopicName>
+        <depthImageTopicName>depth/image_raw</depthImageTopicName>
+        <depthImageCameraInfoTopicName>depth/camera_info</depthImageCameraInfoTopicName>
+        <pointCloudTopicName>depth/points</pointCloudTopicName>
         <frameName>camera_rgb_optical_frame</frameName>
         <pointCloudCutoff>0.3</pointCloudCutoff>
         <pointCloudCutoffMax>8.0</pointCloudCutoffMax>
@@ -54,6 +59,16 @@ ROOM_PARTS = [
     ("pillar_1", "cylinder", "", (-2, -1.5, 0.5), "Gazebo/Yellow"),
     ("ball_1", "sphere", "", (0.5, 2.2, 0.3), "Gazebo/Orange"),
 ]
+
+
+# The camera's topics (relative to the robot's namespace) that carry renderings, by kind.
+CAMERA_TOPICS = {"image": "camera/rgb/image_raw", "depth": "camera/depth/image_raw", "points": "camera/depth/points"}
+
+
+def with_camera(urdf: str, camera: Tuple[int, int, float], link: str = "base_link") -> str:
+    """``urdf`` with the benchmark's RGB-D camera, (width, height, rate Hz), on ``link``."""
+    width, height, rate = camera
+    return urdf.replace("</robot>", CAMERA_BLOCK.format(link=link, width=width, height=height, rate=rate))
 
 
 def room_sdf() -> str:
@@ -80,8 +95,7 @@ def turtlebot_in_room(camera: Optional[Tuple[int, int, float]]) -> Tuple[Any, Li
     with open(URDF_PATH) as urdf_file:
         urdf = urdf_file.read()
     if camera is not None:
-        width, height, rate = camera
-        urdf = urdf.replace("</robot>", CAMERA_BLOCK.format(link="base_link", width=width, height=height, rate=rate))
+        urdf = with_camera(urdf, camera)
     sim = Simulation()
     sim.spawn_urdf(MODEL, urdf, (0.0, -1.0, 0.0, 0.0, 0.0, 0.0))
     sim.spawn_sdf("room", room_sdf())

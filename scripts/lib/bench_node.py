@@ -5,8 +5,9 @@ from __future__ import annotations
 import os
 import statistics
 import time
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
+from bench_camera import CAMERAS, TARGET_SHARE
 from bench_plan import CALLER_ID, PACKAGE, STARTUP_TIMEOUT_S, BenchError, Plan
 from bench_probe import Probe, first_odom_task, measure_rtf_task
 from ros_master import master
@@ -38,8 +39,12 @@ def node_rtf(
     real_time_factor: float,
     warmup: float,
     window: float,
+    room: bool = False,
+    camera: Optional[Tuple[int, int, float]] = None,
+    watch_camera: bool = False,
 ) -> Dict[str, Any]:
-    """RTF and /clock intervals of the node in empty_world.launch with ``robots`` TurtleBots spawned."""
+    """RTF and /clock intervals of the node in empty_world.launch with ``robots`` TurtleBots spawned (the first in
+    a ``room``, with ``camera``: see bench_probe.measure_rtf_task)."""
     physics = dict(package_config("physics.yaml"), time_step=time_step)
     config = package_config("simulator.yaml")
     config["diff_drive"]["cmd_timeout"] = 0.0  # commands are sent once: the drives must not time out, at any RTF
@@ -50,7 +55,7 @@ def node_rtf(
             "empty_world.launch",
             ["real_time_factor:=%g" % real_time_factor, "physics:=" + physics_path, "config:=" + config_path],
         )
-        with Probe(ros, measure_rtf_task, robots, warmup, window) as probe:
+        with Probe(ros, measure_rtf_task, robots, warmup, window, room, camera, watch_camera) as probe:
             try:
                 result = probe.receive(2 * STARTUP_TIMEOUT_S + warmup + window)
             except BenchError as error:
@@ -80,6 +85,33 @@ def full_node(plan: Plan, processes: Processes) -> Dict[str, Any]:
             "wall": linearity(runs, 0.001, "wall_ms_per_sim_s"),
             "node_cpu": linearity(runs, 0.001, "node_cpu_ms_per_sim_s"),
         },
+    }
+
+
+def camera_node(plan: Plan, processes: Processes) -> Dict[str, Any]:
+    """Section 6: the unthrottled node at 1 ms with one TurtleBot in bench_camera's room, without a camera, with an
+    RGB-D camera nobody watches, and with each camera of bench_camera.CAMERAS watched (image, depth image, cloud);
+    each run's RTF and node CPU against the run without a camera."""
+    rows = [("none", None, False)]
+    rows += [("%dx%d at %g Hz, unwatched" % CAMERAS[0], CAMERAS[0], False)]
+    rows += [("%dx%d at %g Hz, watched" % camera, camera, True) for camera in CAMERAS]
+    runs = []
+    for label, camera, watched in rows:
+        print("  camera node: %s ..." % label, flush=True)
+        name = "camera-" + label.replace(" ", "-").replace(",", "")
+        run = node_rtf(processes, name, 1, 0.001, 0.0, plan.warmup_s, plan.window_s, True, camera, watched)
+        del run["clock_interval_ms"]
+        run.update(camera=label, width=camera and camera[0], height=camera and camera[1], rate_hz=camera and camera[2])
+        runs.append(run)
+    for run in runs:
+        run["rtf_share"] = run["rtf"] / runs[0]["rtf"]
+        run["node_cpu_ratio"] = run["node_cpu_ms_per_sim_s"] / runs[0]["node_cpu_ms_per_sim_s"]
+    return {
+        "time_step": 0.001,
+        "real_time_factor": 0.0,
+        "sensors": "all the robot's subscribed; watched: also the camera's rgb/image_raw, depth/image_raw, depth/points",
+        "runs": runs,
+        "target_share": TARGET_SHARE,
     }
 
 

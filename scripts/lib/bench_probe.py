@@ -10,8 +10,9 @@ import statistics
 import threading
 import time
 import traceback
-from typing import Any, Callable, Dict, List, Sequence, Set, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Set, Tuple
 
+from bench_camera import CAMERA_TOPICS, room_sdf, with_camera
 from bench_plan import CALLER_ID, CIRCLE, STARTUP_TIMEOUT_S, URDF_PATH, BenchError
 from process_stats import cpu_seconds
 from ros_master import Master, node_pid
@@ -93,9 +94,19 @@ def spread(values: Sequence[float]) -> Dict[str, float]:
     }
 
 
-def measure_rtf_task(send: Callable[[Any], None], robots: int, warmup_s: float, window_s: float) -> None:
+def measure_rtf_task(
+    send: Callable[[Any], None],
+    robots: int,
+    warmup_s: float,
+    window_s: float,
+    room: bool = False,
+    camera: Optional[Tuple[int, int, float]] = None,
+    watch_camera: bool = False,
+) -> None:
     """Spawn ``robots`` TurtleBots driving circles, subscribe to all they publish, and send the RTF, /clock
-    intervals and message rates over a window of ``window_s`` wall seconds after ``warmup_s``."""
+    intervals and message rates over a window of ``window_s`` wall seconds after ``warmup_s``. With ``room`` the
+    first robot drives in bench_camera's furnished room; with ``camera`` (width, height, rate Hz) it carries
+    bench_camera's RGB-D camera; ``watch_camera``: its image, depth image and cloud are subscribed too."""
     import rospy
     from gazebo_msgs.srv import SpawnModel
     from geometry_msgs.msg import Point, Pose, Quaternion, Twist
@@ -109,16 +120,26 @@ def measure_rtf_task(send: Callable[[Any], None], robots: int, warmup_s: float, 
     clock: List[Tuple[float, float]] = []  # (wall, sim) of each /clock message
     topics = {"/clock": "clock", "/tf": "tf"}
     robot_topic_sets = []
+    if room:
+        rospy.wait_for_service("/gazebo/spawn_sdf_model", STARTUP_TIMEOUT_S)
+        answer = rospy.ServiceProxy("/gazebo/spawn_sdf_model", SpawnModel)("room", room_sdf(), "", Pose(), "world")
+        if not answer.success:
+            raise BenchError("spawning the room failed: %s" % answer.status_message)
     for index in range(robots):
         name = "robot_%d" % index
         position = Point(ROBOT_SPACING_M * (index % ROBOTS_PER_ROW), ROBOT_SPACING_M * (index // ROBOTS_PER_ROW), 0.0)
-        answer = spawn(name, urdf, name, Pose(position, Quaternion(0, 0, 0, 1)), "world")
+        if room and index == 0:  # inside the room, on bench_camera's circle
+            position = Point(0.0, -1.0, 0.0)
+        description = with_camera(urdf, camera) if camera is not None and index == 0 else urdf
+        answer = spawn(name, description, name, Pose(position, Quaternion(0, 0, 0, 1)), "world")
         if not answer.success:
             raise BenchError("spawning %s failed: %s" % (name, answer.status_message))
         command = rospy.Publisher("/%s/%s/commands/velocity" % (name, name), Twist, queue_size=1, latch=True)
         command.publish(Twist(linear=Point(CIRCLE[0], 0, 0), angular=Point(0, 0, CIRCLE[1])))
         robot_topic_sets.append(robot_topics(name))
         topics.update({topic: kind for kind, topic in robot_topic_sets[-1].items()})
+        if watch_camera and index == 0:
+            topics.update({"/%s/%s" % (name, topic): kind for kind, topic in CAMERA_TOPICS.items()})
 
     # Raw TCPROS readers, not rospy subscribers: every message is still sent and read, but this process spends
     # about a microsecond on each instead of a rospy callback's tens, which would load the machine it measures.

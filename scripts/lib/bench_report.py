@@ -1,5 +1,5 @@
-"""The benchmark's report (scripts/bench_sim.py): the machine it ran on, issue #8's targets judged on the results, and
-the human-readable table."""
+"""The benchmark's report (scripts/bench_sim.py): the machine it ran on, the targets of issues #8 and #15 judged on the
+results, and the human-readable table."""
 from __future__ import annotations
 
 import os
@@ -7,6 +7,9 @@ import platform
 import shutil
 import subprocess
 from typing import Any, Callable, Dict, List, Optional, Tuple
+
+from bench_camera import CAMERAS, TARGET_SHARE
+from bench_camera import table as camera_table
 
 
 def debian_version(package: str) -> str:
@@ -46,7 +49,7 @@ def find_run(results: Dict[str, Any], robots: int, time_step: float) -> Optional
 
 
 def targets(results: Dict[str, Any]) -> List[Dict[str, Any]]:
-    """Issue #8's targets: name, value, goal, pass (None when not measured in this run)."""
+    """Issue #8's and #15's targets: name, value, goal, pass (None when not measured in this run)."""
     one_1ms, one_10ms, ten_1ms = find_run(results, 1, 0.001), find_run(results, 1, 0.01), find_run(results, 10, 0.001)
     physics_rtf = results.get("physics_only", {}).get("rtf")
     rows: List[Tuple[str, Optional[float], str, Callable[[float], bool]]] = [
@@ -67,6 +70,34 @@ def targets(results: Dict[str, Any]) -> List[Dict[str, Any]]:
         ),
         ("real time: RTF", results.get("real_time", {}).get("rtf"), "1.00 +- 0.02", lambda v: abs(v - 1) <= 0.02),
         ("launch to first /odom (s)", results.get("launch", {}).get("first_odom_s"), "< 3", lambda v: v < 3),
+    ]
+    cameras = results.get("cameras", {})
+    in_process = cameras.get("in_process", {}).get("cameras", [])
+    node_runs = cameras.get("node", {}).get("runs", [])
+    target = CAMERAS[0]
+    unwatched = next((r for r in node_runs if r["rate_hz"] and "unwatched" in r["camera"]), None)
+    watched = next((r for r in node_runs if (r["width"], r["height"], r["rate_hz"]) == target and r is not unwatched), None)
+    in_process_row = next((r for r in in_process if (r["width"], r["height"], r["rate_hz"]) == target), None)
+    goal = ">= %.2f" % TARGET_SHARE
+    rows += [
+        (
+            "320x240 RGB-D 15 Hz watched, node: RTF share",
+            watched and watched["rtf_share"],
+            goal,
+            lambda v: v >= TARGET_SHARE,
+        ),
+        (
+            "320x240 RGB-D 15 Hz, no ROS: RTF share",
+            in_process_row and in_process_row["rtf_share"],
+            goal,
+            lambda v: v >= TARGET_SHARE,
+        ),
+        (
+            "camera nobody watches: node CPU ratio",
+            unwatched and unwatched["node_cpu_ratio"],
+            "<= 1.10",
+            lambda v: v <= 1.10,
+        ),
     ]
     return [
         {"target": name, "value": value, "goal": goal, "pass": None if value is None else check(value)}
@@ -190,6 +221,27 @@ def table(results: Dict[str, Any]) -> str:
             "collision shapes: " + ", ".join("%s %s" % item for item in sorted(p["collision_shapes"].items())),
         ] + ["note: " + note for note in p["notes"]]
 
+    def camera_lines(c: Dict[str, Any]) -> List[str]:
+        rows = ["no ROS (scripts/lib/bench_camera.py; renderer: %s):" % c["in_process"]["renderer"]]
+        rows += ["   " + line for line in camera_table(c["in_process"]).splitlines()[:-1]]
+        rows.append("full node, 1 ms, unthrottled, the robot's sensors subscribed:")
+        rows.append("   camera                         RTF   RTF share  node CPU ms/sim s  ratio  image Hz  cloud Hz")
+        for r in c["node"]["runs"]:
+            rates = r["rates_per_robot_hz"]
+            rows.append(
+                "   %-28s %6.2f %9.2f %18.1f %6.2f %9s %9s"
+                % (
+                    r["camera"],
+                    r["rtf"],
+                    r["rtf_share"],
+                    r["node_cpu_ms_per_sim_s"],
+                    r["node_cpu_ratio"],
+                    "%.1f" % rates["image"] if "image" in rates else "-",
+                    "%.1f" % rates["points"] if "points" in rates else "-",
+                )
+            )
+        return rows
+
     section("1. physics only: 1 TurtleBot, 1 ms, quickStep 50 iterations, no ROS", "physics_only", physics_lines)
     section(
         "2. full node, real_time_factor 0, /clock /tf odom joint_states imu scan subscribed (rates per sim s)",
@@ -199,6 +251,7 @@ def table(results: Dict[str, Any]) -> str:
     section("3. real time, real_time_factor 1, 1 TurtleBot, 1 ms", "real_time", real_time_lines)
     section("4. roslaunch turtle_sim_ode turtlebot_world.launch to first /odom, fresh master", "launch", launch_lines)
     section("5. peer: the same URDF in PyBullet, same dt and wheel command", "peer", peer_lines)
+    section("6. cameras: 1 TurtleBot with an RGB-D camera in a furnished room, rates in sim time", "cameras", camera_lines)
     lines.append("targets")
     lines.append("   %-44s %10s  %-13s %s" % ("target", "value", "goal", "result"))
     for t in results["targets"]:

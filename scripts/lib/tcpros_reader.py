@@ -54,7 +54,7 @@ class TopicStream:
         self.count = 0
         self.last: Optional[bytes] = None
         self._on_message = on_message
-        self._buffer = b""
+        self._buffer = bytearray()
         self.sock = self._connect(master_uri, caller_id)
 
     def _connect(self, master_uri: str, caller_id: str) -> socket.socket:
@@ -89,23 +89,24 @@ class TopicStream:
 
     def read(self) -> None:
         """Take what has arrived (call when the socket is readable)."""
-        chunk = self.sock.recv(1 << 16)
+        chunk = self.sock.recv(1 << 20)
         if not chunk:
             raise ConnectionError("%s: the publisher closed the connection" % self.topic)
         now = time.monotonic()
-        data = self._buffer + chunk
+        data = self._buffer  # appended to in place: a message of megabytes (a camera's) arrives in many chunks
+        data += chunk
         offset, end = 0, len(data)
         while end - offset >= 4:
             (size,) = _LENGTH.unpack_from(data, offset)
             if end - offset - 4 < size:
                 break
-            payload = data[offset + 4 : offset + 4 + size]
+            payload = bytes(data[offset + 4 : offset + 4 + size])
             offset += 4 + size
             self.count += 1
             self.last = payload
             if self._on_message is not None:
                 self._on_message(now, payload)
-        self._buffer = data[offset:]
+        del data[:offset]
 
 
 class Reader:

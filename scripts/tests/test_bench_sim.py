@@ -12,13 +12,19 @@ from conftest import ROS_PYTHON, ros_missing
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 BENCH = os.path.join(REPO, "scripts", "bench_sim.py")
 TIMEOUT_S = 600  # --quick takes about 90 s on 2 cores; a busy machine may take longer
-SECTIONS = ("physics_only", "full_node", "real_time", "launch")
+SECTIONS = ("physics_only", "full_node", "real_time", "launch", "cameras")
 # 0 = unthrottled; linearity needs three robot counts, --quick has two ([] stands for any list index)
 MAY_BE_ZERO_OR_NONE = {
     "full_node.real_time_factor",
     "full_node.runs[].real_time_factor",
     "full_node.linearity_at_1ms.wall",
     "full_node.linearity_at_1ms.node_cpu",
+    "cameras.in_process.target_met",  # a verdict, False when missed
+    "cameras.node.real_time_factor",
+    "cameras.node.runs[].real_time_factor",
+    "cameras.node.runs[].width",  # None: the run without a camera
+    "cameras.node.runs[].height",
+    "cameras.node.runs[].rate_hz",
 }
 
 
@@ -77,5 +83,24 @@ def test_machine_peer_and_targets_are_recorded(results):
     machine = results["machine"]
     assert machine["nproc"] >= 1 and machine["cpu_model"] and machine["python"]
     assert results["peer"]["status"] == "skipped"
-    assert len(results["targets"]) == 7
+    assert len(results["targets"]) == 10
+
+
+def test_camera_runs_render_at_their_rate_only_when_watched(results):
+    runs = results["cameras"]["node"]["runs"]
+    assert [run["camera"] for run in runs] == [
+        "none",
+        "320x240 at 15 Hz, unwatched",
+        "320x240 at 15 Hz, watched",
+        "640x480 at 30 Hz, watched",
+    ]
+    for run in runs:
+        rates = run["rates_per_robot_hz"]
+        if "unwatched" in run["camera"] or run["rate_hz"] is None:
+            assert not {"image", "depth", "points"} & set(rates), run
+        else:
+            for kind in ("image", "depth", "points"):  # per sim second, as the plugin's update_rate says
+                assert rates[kind] == pytest.approx(run["rate_hz"], rel=0.2), (kind, run)
+    sizes = [(row["width"], row["height"]) for row in results["cameras"]["in_process"]["cameras"]]
+    assert sizes == [(320, 240), (640, 480)]
     assert all(target["pass"] in (True, False, None) for target in results["targets"])

@@ -271,6 +271,45 @@ typedef struct
   long count;
 } Band;
 
+/* The plane normal . p = offset (``normal`` in the world frame, ``height`` = offset - normal . origin), seen from
+ * its front, in rows [j0, j1): its depth along a pixel's ray (u, v, 1) is height / (normal . ray), and the normal,
+ * so the shade, is the same everywhere. Returns the ray tests made. */
+static long planeRows(const Scene* s, int j0, int j1, const double* normal, double height, const double* colour,
+                      double* restrict distance, uint8_t* restrict rgb)
+{
+  const double* rotation = s->rotation; /* world from optical: the ray's world direction is rotation (u, v, 1) */
+  const double invFocal = 1.0 / s->focal;
+  double perU = 0.0, perV = 0.0, ahead = 0.0; /* normal . ray = perU u + perV v + ahead */
+  for (int a = 0; a < 3; ++a)
+  {
+    perU += normal[a] * rotation[3 * a];
+    perV += normal[a] * rotation[3 * a + 1];
+    ahead += normal[a] * rotation[3 * a + 2];
+  }
+  uint8_t shade[3];
+  shadeInto(s, colour, normal, shade);
+  for (int j = j0; j < j1; ++j)
+  {
+    double rowFacing = perV * ((j - s->cy) * invFocal) + ahead;
+    for (int i = 0; i < s->width; ++i)
+    {
+      double facing = perU * ((i - s->cx) * invFocal) + rowFacing;
+      if (!(facing < 0.0))
+      {
+        continue;
+      }
+      double t = height / facing;
+      int p = j * s->width + i;
+      if (t > s->tMin && t < distance[p])
+      {
+        distance[p] = t;
+        memcpy(rgb + 3 * p, shade, 3);
+      }
+    }
+  }
+  return (long)(j1 - j0) * s->width;
+}
+
 /* The band's rows of the picture, every primitive, then the sky where nothing was hit within far. */
 static void* renderBand(void* arg)
 {
@@ -346,14 +385,14 @@ static void* renderBand(void* arg)
       start[1] = origin[1];
       start[2] = origin[2];
     }
-    double planeStart = type == kPlane ? params[0] - dot3(shape, start) : 0.0;
-    /* A flat face has one shade: the plane's, or a box face's (2 * axis + (1 on the positive side)). */
-    uint8_t flat[6][3];
     if (type == kPlane)
     {
-      shadeInto(s, colour, shape, flat[0]);
+      tests += planeRows(s, j0, j1, shape, params[0] - dot3(shape, start), colour, distance, rgb);
+      continue;
     }
-    else if (type == kBox)
+    /* A box face has one shade: 2 * axis + (1 on the positive side). */
+    uint8_t flat[6][3];
+    if (type == kBox)
     {
       for (int face = 0; face < 6; ++face)
       {
@@ -396,22 +435,6 @@ static void* renderBand(void* arg)
           case kCapsule:
             t = hitCapsule(start, d, params[0], params[1], tMin, n);
             break;
-          case kPlane:
-          {
-            double facing = dot3(shape, d);
-            if (facing < 0.0)
-            {
-              t = planeStart / facing;
-              n[0] = shape[0];
-              n[1] = shape[1];
-              n[2] = shape[2];
-            }
-            if (!(t > tMin))
-            {
-              t = INFINITY;
-            }
-            break;
-          }
           default:
             break;
         }
@@ -421,11 +444,7 @@ static void* renderBand(void* arg)
         }
         distance[p] = t;
         uint8_t* out = rgb + 3 * p;
-        if (type == kPlane)
-        {
-          memcpy(out, flat[0], 3);
-        }
-        else if (type == kBox)
+        if (type == kBox)
         {
           int axis = n[0] != 0.0 ? 0 : n[1] != 0.0 ? 1 : 2;
           memcpy(out, flat[2 * axis + (n[axis] > 0.0)], 3);

@@ -4,7 +4,6 @@ through its ROS layer: pacing across rate changes, pause and lockstep; spawns th
 colliding with other types; non-ASCII and huge names; reset while paused; models asking for too many rays;
 thousands of unsupported plugins; a <world> sent as a model. After each, as in test_bad_input.py: /clock still
 advances, the reference models have not moved and every node answers."""
-import math
 import threading
 import time
 import unittest

@@ -15,6 +15,7 @@ from sensor_msgs.msg import CameraInfo, Image, PointCloud2
 from test_camera import camera_world
 
 from turtle_sim_ode.ros import camera_topics, periodic
+from turtle_sim_ode.ros.wire import joined
 from turtle_sim_ode.sensors.camera import scene_colours
 
 
@@ -34,7 +35,7 @@ class FakePublisher:
 
     def publish(self, pack, *fields) -> None:
         message = self.data_class()
-        message.deserialize(pack(len(self.messages) + 1, *fields))
+        message.deserialize(joined(pack(len(self.messages) + 1, *fields)))
         self.messages.append(message)
 
     def unregister(self) -> None:
@@ -113,7 +114,7 @@ def test_the_spliced_data_is_byte_for_byte_what_genpy_writes(publisher) -> None:
     data = np.arange(2 * 3 * 32, dtype=np.uint8).reshape(2, 3, 32)
     for key, extra in (("image", ()), ("depth", ()), ("points", (False,))):
         message = messages[key]
-        packed = camera_topics.packer(message)(7, 8, 9, data, *extra)
+        packed = joined(camera_topics.packer(message)(7, 8, 9, data, *extra))
         message.data = data.tobytes()
         buffer = io.BytesIO()
         message.serialize(buffer)

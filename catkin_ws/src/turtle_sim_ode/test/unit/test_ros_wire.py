@@ -3,9 +3,11 @@ import io
 import math
 import random
 import socket
+import threading
 import time
 
 import genpy
+import numpy as np
 import pytest
 from geometry_msgs.msg import Quaternion, TransformStamped
 from nav_msgs.msg import Odometry
@@ -153,4 +155,22 @@ def test_send_reaches_readers_and_drops_a_stalled_or_gone_subscriber():
     assert time.monotonic() - started < 5.0  # held up once, for the timeout
     assert reading.stat_num_msg == 40 and reading.stat_bytes == 40 * len(message)
     for sock in (reader, stalled_reader, reading_end):
+        sock.close()
+
+
+def test_a_message_in_pieces_larger_than_the_socket_buffer_arrives_whole():
+    """A camera's cloud goes out as pieces around a view of its buffer; the socket takes a few kB at a time."""
+    sending_end, reader = _socket_pair(4096)
+    cloud = np.arange(300000, dtype=np.uint32).view(np.uint8)
+    pieces = (b"head", memoryview(cloud), b"", b"tail")
+    received = bytearray()
+    reading = threading.Thread(target=lambda: received.extend(reader.recv(1 << 24, socket.MSG_WAITALL)))
+    reading.start()
+    connection = _Connection(sending_end)
+    assert ros_wire.send([connection], pieces, 5.0) == []
+    sending_end.shutdown(socket.SHUT_WR)
+    reading.join(5.0)
+    assert bytes(received) == ros_wire.joined(pieces) == b"head" + cloud.tobytes() + b"tail"
+    assert connection.stat_bytes == len(received) and connection.stat_num_msg == 1
+    for sock in (reader, sending_end):
         sock.close()

@@ -13,7 +13,7 @@ import rospy
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 
 from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, plugin_topic, topic_prefix
-from turtle_sim_ode.ros.wire import release
+from turtle_sim_ode.ros.wire import Packed, release
 from turtle_sim_ode.sensors.camera import CLOUD_POINT_STEP, CameraSensor, Frame
 from turtle_sim_ode.sensors.config import CameraConfig
 
@@ -43,12 +43,12 @@ def camera_info(config: CameraConfig, frame: str, cx: float, cy: float) -> Camer
     return info
 
 
-def packer(message: Any) -> Callable[..., bytes]:
+def packer(message: Any) -> Callable[..., Packed]:
     """Packs ``message`` with a header seq and stamp, as genpy serialises it; with ``data`` (an array or bytes) as
-    its uint8[] ``data`` field, spliced in with one copy (genpy would copy megabytes of a cloud four times), and
-    ``is_dense`` for a cloud."""
+    its uint8[] ``data`` field, and ``is_dense`` for a cloud. With ``data`` the message is in pieces around a view of
+    the data, not copied (genpy would copy megabytes of a cloud four times): valid until the data changes."""
 
-    def pack(seq: int, secs: int, nsecs: int, data: Any = None, is_dense: Optional[bool] = None) -> bytes:
+    def pack(seq: int, secs: int, nsecs: int, data: Any = None, is_dense: Optional[bool] = None) -> Packed:
         header = message.header
         header.seq, header.stamp.secs, header.stamp.nsecs = seq, secs, nsecs
         if is_dense is not None:
@@ -60,7 +60,7 @@ def packer(message: Any) -> Callable[..., bytes]:
             return raw
         view = memoryview(np.ascontiguousarray(data)).cast("B") if isinstance(data, np.ndarray) else data
         tail = len(raw) - (1 if isinstance(message, PointCloud2) else 0)
-        return b"".join((raw[: tail - 4], _UINT32.pack(len(view)), view, raw[tail:]))
+        return (raw[: tail - 4], _UINT32.pack(len(view)), view, raw[tail:])
 
     return pack
 

@@ -21,10 +21,13 @@ import socket
 import struct
 import time
 import warnings
-from typing import Any, Callable, List, Sequence, Tuple
+from typing import Any, Callable, List, Sequence, Tuple, Union
 
 import rospy
 
+# A packed message: its bytes, or its pieces in order (bytes and memoryviews of bytes), which are written with one
+# sendmsg() each: a camera's megabytes are then copied once, by the kernel, not joined first (issue #15).
+Packed = Union[bytes, Sequence[Union[bytes, memoryview]]]
 Vec3 = Tuple[float, float, float]
 Quat = Tuple[float, float, float, float]  # x, y, z, w as in geometry_msgs
 
@@ -42,6 +45,18 @@ def _string(text: str) -> bytes:
 def _float64s(values: Sequence[float]) -> bytes:
     """A fixed-size float64[N] (covariances): no length prefix."""
     return struct.pack("<%dd" % len(values), *values)
+
+
+def pieces(packed: Packed) -> List[memoryview]:
+    """A packed message as byte views (no copy)."""
+    if isinstance(packed, (bytes, bytearray, memoryview)):
+        packed = (packed,)
+    return [memoryview(piece).cast("B") for piece in packed]
+
+
+def joined(packed: Packed) -> bytes:
+    """A packed message's bytes (a copy if it is in pieces)."""
+    return packed if isinstance(packed, bytes) else b"".join(pieces(packed))
 
 
 def stamp_parts(seconds: float) -> Tuple[int, int]:
@@ -62,7 +77,7 @@ class PackedPublisher:
     def get_num_connections(self) -> int:
         return self._pub.get_num_connections()
 
-    def publish(self, pack: Callable[..., bytes], *fields: Any) -> None:
+    def publish(self, pack: Callable[..., Packed], *fields: Any) -> None:
         """Publish the message ``pack(seq, *fields)`` if anyone listens (nothing is packed otherwise); seq is the
         header seq rospy gives the topic's next message, as it would to a genpy message."""
         impl = self._pub.impl
@@ -71,10 +86,10 @@ class PackedPublisher:
             return
         with lock:  # rospy's own: one message at a time on the sockets, and seq, as its publish does
             impl.seq += 1
-            payload = pack(impl.seq, *fields)
-            data = _LENGTH.pack(len(payload)) + payload
+            payload = pieces(pack(impl.seq, *fields))
+            data = [memoryview(_LENGTH.pack(sum(len(piece) for piece in payload)))] + payload
             stalled = send(impl.connections, data, STALLED_SUBSCRIBER_TIMEOUT_S)
-            impl.message_data_sent += len(data)
+            impl.message_data_sent += sum(len(piece) for piece in data)
         for connection in stalled:
             rospy.logwarn(
                 "%s: subscriber %s took no message for %.0f s: dropped (it may subscribe again)",
@@ -87,49 +102,52 @@ class PackedPublisher:
         release(self._pub)
 
 
-def send(connections: Sequence[Any], data: bytes, timeout: float) -> List[Any]:
+def send(connections: Sequence[Any], data: Packed, timeout: float) -> List[Any]:
     """Write ``data`` to each rospy TCPROS connection; one that fails is closed (rospy then forgets it). Returns
     those that timed out: their subscriber took nothing for ``timeout`` wall seconds."""
     stalled = []
+    views = pieces(data)
+    size = sum(len(view) for view in views)
     for connection in connections:
         if connection.done:
             continue
         sock = getattr(connection, "socket", None)
         if sock is None:  # not a plain TCPROS connection (another publisher of the topic gave it a queue)
-            connection.write_data(data)
+            connection.write_data(joined(views))
             continue
         try:
-            _send_all(sock, data, timeout)
+            _send_all(sock, views, timeout)
         except socket.timeout:
             stalled.append(connection)
             connection.close()  # part of a message may have gone: the stream cannot be resumed
         except OSError:  # the subscriber went away (EPIPE, ECONNRESET)
             connection.close()
         else:
-            connection.stat_bytes += len(data)
+            connection.stat_bytes += size
             connection.stat_num_msg += 1
     return stalled
 
 
-def _send_all(sock: socket.socket, data: bytes, timeout: float) -> None:
-    """sock.sendall with a timeout (socket.timeout), leaving the socket blocking as rospy has it. One non-blocking
-    send() as a rule: a socket with a timeout of its own would cost a poll() before every send."""
-    try:
-        sent = sock.send(data, socket.MSG_DONTWAIT)
-    except BlockingIOError:
-        sent = 0
-    if sent == len(data):
-        return
-    rest = memoryview(data)[sent:]
-    deadline = time.monotonic() + timeout
-    while rest:
+def _send_all(sock: socket.socket, views: List[memoryview], timeout: float) -> None:
+    """sock.sendall of the pieces with a timeout (socket.timeout), leaving the socket blocking as rospy has it. One
+    non-blocking sendmsg() as a rule: a socket with a timeout of its own would cost a poll() before every send."""
+    deadline = None
+    while views:
+        try:
+            sent = sock.sendmsg(views, (), socket.MSG_DONTWAIT)
+        except BlockingIOError:
+            sent = 0
+        while views and sent >= len(views[0]):  # drop what went, whole pieces first
+            sent -= len(views[0])
+            views = views[1:]
+        if not views:
+            return
+        views = [views[0][sent:]] + views[1:]
+        if deadline is None:
+            deadline = time.monotonic() + timeout
         remaining = deadline - time.monotonic()
         if remaining <= 0 or not select.select([], [sock], [], remaining)[1]:
             raise socket.timeout("no room in the socket for %.1f s" % timeout)
-        try:
-            rest = rest[sock.send(rest, socket.MSG_DONTWAIT) :]
-        except BlockingIOError:
-            continue
 
 
 def release(handle: Any) -> None:
