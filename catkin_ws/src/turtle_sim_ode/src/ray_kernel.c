@@ -169,15 +169,70 @@ static double hitCapsule(const double* o, const double* d, double r, double leng
   return best;
 }
 
-/* The pixels [box[0], box[1]) x [box[2], box[3]) where a shape's bounding box (``half`` extents along ``axes``, the
- * rows of a 3 x 3: the shape's axes in optical coordinates, about ``centre`` in the optical frame) may show: the
- * bounding rectangle of its corners in front of the near plane and of its edges' crossings of that plane. 0 if it
- * lies wholly before the near plane, beyond far, or outside the image. */
+/* The pixels [box[0], box[1]) x [box[2], box[3]) where a solid with ``count`` corners ``points`` (optical frame)
+ * and ``edgeCount`` ``edges`` (pairs of corner indices) may show: the bounding rectangle of its corners in front
+ * of the near plane and of its edges' crossings of that plane. 0 if it lies wholly before the near plane, beyond
+ * far, or outside the image. */
+static int imageBox(const double (*points)[3], int count, const uint8_t (*edges)[2], int edgeCount, double near,
+                    double far, double focal, double cx, double cy, int width, int height, int* box)
+{
+  double zMin = INFINITY, zMax = -INFINITY;
+  for (int k = 0; k < count; ++k)
+  {
+    zMin = fmin(zMin, points[k][2]);
+    zMax = fmax(zMax, points[k][2]);
+  }
+  if (zMax < near || zMin > far)
+  {
+    return 0;
+  }
+  double u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
+  for (int k = 0; k < count; ++k)
+  {
+    const double* p = points[k];
+    if (p[2] >= near)
+    {
+      u0 = fmin(u0, p[0] / p[2]);
+      u1 = fmax(u1, p[0] / p[2]);
+      v0 = fmin(v0, p[1] / p[2]);
+      v1 = fmax(v1, p[1] / p[2]);
+    }
+  }
+  for (int e = 0; e < edgeCount; ++e)
+  {
+    const double* p = points[edges[e][0]];
+    const double* q = points[edges[e][1]];
+    if ((p[2] < near) == (q[2] < near))
+    {
+      continue;
+    }
+    double s = (near - p[2]) / (q[2] - p[2]);
+    double x = (p[0] + s * (q[0] - p[0])) / near;
+    double y = (p[1] + s * (q[1] - p[1])) / near;
+    u0 = fmin(u0, x);
+    u1 = fmax(u1, x);
+    v0 = fmin(v0, y);
+    v1 = fmax(v1, y);
+  }
+  /* In pixels, clamped to the image before the conversion to int (the crossings may project very far out). */
+  box[0] = (int)fmax(0.0, floor(fmax(-1.0, u0 * focal + cx)));
+  box[1] = (int)fmin((double)width, ceil(fmin((double)width, u1 * focal + cx)) + 1.0);
+  box[2] = (int)fmax(0.0, floor(fmax(-1.0, v0 * focal + cy)));
+  box[3] = (int)fmin((double)height, ceil(fmin((double)height, v1 * focal + cy)) + 1.0);
+  return box[0] < box[1] && box[2] < box[3];
+}
+
+/* The 12 edges of a box whose corner k has the sign of half extent a in bit a. */
+static const uint8_t kBoxEdges[12][2] = { { 0, 1 }, { 2, 3 }, { 4, 5 }, { 6, 7 }, { 0, 2 }, { 1, 3 },
+                                          { 4, 6 }, { 5, 7 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
+static const uint8_t kTriangleEdges[3][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 } };
+
+/* imageBox of a shape's bounding box: ``half`` extents along ``axes`` (the rows of a 3 x 3: the shape's axes in
+ * optical coordinates) about ``centre`` in the optical frame. */
 static int pixelBox(const double* centre, const double* axes, const double* half, double near, double far, double focal,
                     double cx, double cy, int width, int height, int* box)
 {
   double corners[8][3];
-  double zMin = INFINITY, zMax = -INFINITY;
   for (int k = 0; k < 8; ++k)
   {
     for (int b = 0; b < 3; ++b)
@@ -188,52 +243,24 @@ static int pixelBox(const double* centre, const double* axes, const double* half
         corners[k][b] += ((k >> a) & 1 ? half[a] : -half[a]) * axes[3 * a + b];
       }
     }
-    zMin = fmin(zMin, corners[k][2]);
-    zMax = fmax(zMax, corners[k][2]);
   }
-  if (zMax < near || zMin > far)
-  {
-    return 0;
-  }
-  double u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
-  for (int k = 0; k < 8; ++k)
-  {
-    const double* p = corners[k];
-    if (p[2] >= near)
-    {
-      u0 = fmin(u0, p[0] / p[2]);
-      u1 = fmax(u1, p[0] / p[2]);
-      v0 = fmin(v0, p[1] / p[2]);
-      v1 = fmax(v1, p[1] / p[2]);
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      const double* q = corners[k | (1 << a)];
-      if ((k >> a) & 1 || (p[2] < near) == (q[2] < near))
-      {
-        continue;
-      }
-      double s = (near - p[2]) / (q[2] - p[2]);
-      double x = (p[0] + s * (q[0] - p[0])) / near;
-      double y = (p[1] + s * (q[1] - p[1])) / near;
-      u0 = fmin(u0, x);
-      u1 = fmax(u1, x);
-      v0 = fmin(v0, y);
-      v1 = fmax(v1, y);
-    }
-  }
-  /* In pixels, clamped to the image before the conversion to int (the crossings may project very far out). */
-  box[0] = (int)fmax(0.0, floor(fmax(-1.0, u0 * focal + cx)));
-  box[1] = (int)fmin((double)width, ceil(fmin((double)width, u1 * focal + cx)) + 1.0);
-  box[2] = (int)fmax(0.0, floor(fmax(-1.0, v0 * focal + cy)));
-  box[3] = (int)fmin((double)height, ceil(fmin((double)height, v1 * focal + cy)) + 1.0);
-  return box[0] < box[1] && box[2] < box[3];
+  return imageBox((const double(*)[3])corners, 8, kBoxEdges, 12, near, far, focal, cx, cy, width, height, box);
 }
 
 static uint8_t channel(double value)
 {
   return (uint8_t)(value <= 0.0 ? 0.0 : value >= 1.0 ? 255.0 : value * 255.0 + 0.5);
 }
+
+/* A triangle mesh (a trimesh geom): ``pose`` is its position (3), rotation world from mesh (9, row-major) and
+ * colour (3); ``faces`` has three indices into ``vertices`` (x, y, z in the mesh's frame) a triangle. */
+typedef struct
+{
+  const double* pose;
+  int faceCount;
+  const double* vertices;
+  const uint32_t* faces;
+} Mesh;
 
 /* What tso_render draws and where it writes: see tso_render. */
 typedef struct
@@ -243,6 +270,8 @@ typedef struct
   const double* rotation;
   int count;
   const double* primitives;
+  int meshCount;
+  const Mesh* meshes;
   double tMin, far, focal, cx, cy;
   const double* light;
   double ambient;
@@ -310,6 +339,121 @@ static long planeRows(const Scene* s, int j0, int j1, const double* normal, doub
   return (long)(j1 - j0) * s->width;
 }
 
+static void cross3(const double* a, const double* b, double* out)
+{
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* A mesh's triangles in rows [rowBegin, rowEnd), each in the pixels its projection may cover, seen from both sides
+ * (a mesh need not be closed, nor its faces wound one way) with one shade a triangle. Returns the ray tests made. */
+static long meshRows(const Scene* s, const Mesh* mesh, int rowBegin, int rowEnd, double* restrict distance,
+                     uint8_t* restrict rgb)
+{
+  const double* origin = s->origin;
+  const double* rotation = s->rotation;
+  const double* position = mesh->pose;
+  const double* shape = mesh->pose + 3; /* world from mesh */
+  const double* colour = mesh->pose + 12;
+  const double invFocal = 1.0 / s->focal;
+  double rel[3] = { position[0] - origin[0], position[1] - origin[1], position[2] - origin[2] };
+  double centre[3]; /* the mesh's origin in the optical frame */
+  double local[9];  /* mesh from optical */
+  double start[3];  /* the camera in the mesh's frame */
+  for (int a = 0; a < 3; ++a)
+  {
+    centre[a] = rotation[a] * rel[0] + rotation[3 + a] * rel[1] + rotation[6 + a] * rel[2];
+    for (int b = 0; b < 3; ++b)
+    {
+      local[3 * a + b] = shape[a] * rotation[b] + shape[3 + a] * rotation[3 + b] + shape[6 + a] * rotation[6 + b];
+    }
+    start[a] = -(shape[a] * rel[0] + shape[3 + a] * rel[1] + shape[6 + a] * rel[2]);
+  }
+  long tests = 0;
+  for (int f = 0; f < mesh->faceCount; ++f)
+  {
+    const double* v[3];
+    double corners[3][3]; /* optical frame */
+    for (int k = 0; k < 3; ++k)
+    {
+      v[k] = mesh->vertices + 3 * (long)mesh->faces[3 * (long)f + k];
+      for (int b = 0; b < 3; ++b)
+      {
+        corners[k][b] = centre[b] + local[b] * v[k][0] + local[3 + b] * v[k][1] + local[6 + b] * v[k][2];
+      }
+    }
+    int box[4];
+    if (!imageBox((const double(*)[3])corners, 3, kTriangleEdges, 3, s->tMin, s->far, s->focal, s->cx, s->cy, s->width,
+                  s->height, box))
+    {
+      continue;
+    }
+    int j0 = box[2] > rowBegin ? box[2] : rowBegin;
+    int j1 = box[3] < rowEnd ? box[3] : rowEnd;
+    double e1[3], e2[3], normal[3], toCamera[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      e1[a] = v[1][a] - v[0][a];
+      e2[a] = v[2][a] - v[0][a];
+      toCamera[a] = start[a] - v[0][a];
+    }
+    cross3(e1, e2, normal);
+    double length = sqrt(dot3(normal, normal));
+    if (j0 >= j1 || !(length > 0.0))
+    {
+      continue; /* not in this band, or degenerate */
+    }
+    double side = dot3(normal, toCamera) < 0.0 ? -1.0 : 1.0; /* the face towards the camera */
+    double world[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      world[a] =
+          side * (shape[3 * a] * normal[0] + shape[3 * a + 1] * normal[1] + shape[3 * a + 2] * normal[2]) / length;
+    }
+    uint8_t shade[3];
+    shadeInto(s, colour, world, shade);
+    double q[3]; /* Moller-Trumbore: toCamera x e1 is the same for every ray */
+    cross3(toCamera, e1, q);
+    for (int j = j0; j < j1; ++j)
+    {
+      double vv = (j - s->cy) * invFocal;
+      for (int i = box[0]; i < box[1]; ++i)
+      {
+        double u = (i - s->cx) * invFocal;
+        double d[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          d[a] = local[3 * a] * u + local[3 * a + 1] * vv + local[3 * a + 2];
+        }
+        ++tests;
+        double pv[3];
+        cross3(d, e2, pv);
+        double det = dot3(e1, pv);
+        if (det == 0.0)
+        {
+          continue;
+        }
+        double inverse = 1.0 / det;
+        double a = dot3(toCamera, pv) * inverse;
+        double b = dot3(d, q) * inverse;
+        if (a < 0.0 || b < 0.0 || a + b > 1.0)
+        {
+          continue;
+        }
+        double t = dot3(e2, q) * inverse; /* the hit's depth: the ray's optical z is 1 */
+        int p = j * s->width + i;
+        if (t > s->tMin && t < distance[p])
+        {
+          distance[p] = t;
+          memcpy(rgb + 3 * p, shade, 3);
+        }
+      }
+    }
+  }
+  return tests;
+}
+
 /* The band's rows of the picture, every primitive, then the sky where nothing was hit within far. */
 static void* renderBand(void* arg)
 {
@@ -327,6 +471,10 @@ static void* renderBand(void* arg)
   for (int p = band->rowBegin * width; p < band->rowEnd * width; ++p)
   {
     distance[p] = INFINITY;
+  }
+  for (int m = 0; m < s->meshCount; ++m)
+  {
+    tests += meshRows(s, &s->meshes[m], band->rowBegin, band->rowEnd, distance, rgb);
   }
   for (int k = 0; k < s->count; ++k)
   {
@@ -529,18 +677,19 @@ static long runBands(int threads, int height, void* (*work)(void*), const void* 
   return total;
 }
 
-/* Render ``count`` primitives seen from ``origin`` with ``rotation`` (world from optical, row-major), one ray through
- * each pixel's centre: (u, v, 1) in the optical frame with u = (i - cx) / focal, v = (j - cy) / focal, so that a
- * ray's parameter at a hit is the hit's depth along the optical axis. Fills ``distance`` (that depth, INFINITY
- * where nothing is hit at a depth within (tMin, far]), ``depth`` (the same as float, NAN there) and ``rgb`` (shaded
- * colours, ``sky`` there), in up to ``threads`` bands of rows at once. Returns the number of ray tests made. */
+/* Render ``count`` primitives and ``meshCount`` meshes seen from ``origin`` with ``rotation`` (world from optical,
+ * row-major), one ray through each pixel's centre: (u, v, 1) in the optical frame with u = (i - cx) / focal, v = (j -
+ * cy) / focal, so that a ray's parameter at a hit is the hit's depth along the optical axis. Fills ``distance`` (that
+ * depth, INFINITY where nothing is hit at a depth within (tMin, far]), ``depth`` (the same as float, NAN there) and
+ * ``rgb`` (shaded colours, ``sky`` there), in up to ``threads`` bands of rows at once. Returns the number of ray tests
+ * made. */
 long tso_render(int width, int height, const double* origin, const double* rotation, int count,
-                const double* primitives, double tMin, double far, double focal, double cx, double cy,
-                const double* light, double ambient, const double* sky, double* distance, float* depth, uint8_t* rgb,
-                int threads)
+                const double* primitives, int meshCount, const Mesh* meshes, double tMin, double far, double focal,
+                double cx, double cy, const double* light, double ambient, const double* sky, double* distance,
+                float* depth, uint8_t* rgb, int threads)
 {
-  Scene scene = { width, height, origin, rotation, count, primitives, tMin,  far, focal,
-                  cx,    cy,     light,  ambient,  sky,   distance,   depth, rgb };
+  Scene scene = { width, height, origin, rotation, count,   primitives, meshCount, meshes, tMin, far,
+                  focal, cx,     cy,     light,    ambient, sky,        distance,  depth,  rgb };
   return runBands(threads, height, renderBand, &scene);
 }
 

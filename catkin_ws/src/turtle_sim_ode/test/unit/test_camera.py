@@ -12,6 +12,7 @@ from turtle_sim_ode.models.builder import quat_from_rpy
 from turtle_sim_ode.models.sdf import parse_sdf_model, parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import parse_urdf
+from turtle_sim_ode.physics.trimesh import MeshGeom
 from turtle_sim_ode.sensors.camera import CameraSensor, scene_colours
 from turtle_sim_ode.sensors.config import read_sdf_sensors, read_sensors
 from turtle_sim_ode.sensors.raycast import hit_capsule, hit_cylinder, hit_sphere
@@ -197,7 +198,7 @@ def test_the_ray_kernel_is_built_and_used_by_default() -> None:
 
 
 def test_the_c_and_numpy_ray_casters_draw_the_same_image() -> None:
-    """Every shape, turned every way, near and far, half out of the picture: the C kernel and numpy agree."""
+    """Every shape and a mesh, turned every way, near and far, half out of the picture: C and numpy rays agree."""
     sim, camera = camera_world(width=96, height=72)
     space = sim.physics.space
     shapes = [
@@ -207,12 +208,16 @@ def test_the_c_and_numpy_ray_casters_draw_the_same_image() -> None:
         ode.GeomCapsule(space, 0.15, 0.5),
         ode.GeomBox(space, (0.2, 0.2, 2.0)),
         ode.GeomBox(space, (4.0, 0.1, 1.0)),  # a wall beside the camera, from behind it to well ahead
+        # A tetrahedron with one face wound the other way (meshes are drawn from both sides).
+        MeshGeom(
+            space, [(0, 0, 0), (0.4, 0, 0), (0, 0.4, 0), (0, 0, 0.4)], [(0, 2, 1), (0, 1, 3), (0, 2, 3), (1, 2, 3)]
+        ),
     ]
     rng = np.random.default_rng(15)
-    places = ((1.0, 0.6), (0.8, -0.5), (1.2, -0.2), (0.9, 0.2), (0.5, 0.9), (0.0, -0.7))
+    places = ((1.0, 0.6), (0.8, -0.5), (1.2, -0.2), (0.9, 0.2), (0.5, 0.9), (0.0, -0.7), (0.7, 0.0))
     for geom, (x, y) in zip(shapes, places):
         geom.setPosition((x, y, rng.uniform(0.2, 0.8)))
-        angles = rng.uniform(-np.pi, np.pi, 3) if geom is not shapes[-1] else (0.0, 0.0, 0.3)
+        angles = rng.uniform(-np.pi, np.pi, 3) if geom is not shapes[5] else (0.0, 0.0, 0.3)
         w, qx, qy, qz = quat_from_rpy(*angles)
         geom.setQuaternion((w, qx, qy, qz))
     colours = scene_colours(sim.models.values())

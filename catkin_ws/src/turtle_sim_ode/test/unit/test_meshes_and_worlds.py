@@ -12,8 +12,10 @@ import sys
 import threading
 from pathlib import Path
 
+import numpy as np
 import pytest
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
+from test_camera import CAMERA_URDF
 
 from test_sensors import LASER_URDF, beam, laser_config
 from turtle_sim_ode.models.includes import resolve_includes
@@ -24,6 +26,7 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import Mesh, parse_urdf
 from turtle_sim_ode.physics.trimesh import MeshGeom, quickstep_w
 from turtle_sim_ode.physics.world import seed_ode_random
+from turtle_sim_ode.sensors.camera import SKY_COLOR, CameraSensor, scene_colours
 from turtle_sim_ode.sensors.laser import LaserScanner
 from turtle_sim_ode.world.simulation import Simulation
 
@@ -132,6 +135,23 @@ def test_a_laser_inside_mesh_walls_sees_them_where_the_mesh_puts_them():
     assert ranges[beam(config, math.pi / 2)] == pytest.approx(HALF_INSIDE - y, abs=RANGE_TOLERANCE)
     assert ranges[beam(config, math.pi)] == pytest.approx(x - (ROOM_X - HALF_INSIDE), abs=RANGE_TOLERANCE)
     assert ranges[beam(config, -math.pi / 2)] == pytest.approx(y + HALF_INSIDE, abs=RANGE_TOLERANCE)
+
+
+@pytest.mark.parametrize("kernel", [True, False], ids=["c_rays", "numpy_rays"])
+def test_a_camera_inside_mesh_walls_sees_them_where_the_mesh_puts_them(kernel):
+    sim = room_sim()
+    urdf = CAMERA_URDF.format(
+        kind="depth", plugin="libgazebo_ros_openni_kinect.so", fov=1.0, width=64, height=48, z=0.1
+    )
+    sim.spawn_urdf("cam", urdf, (0.7, 0.1, 0.05, 0.0, 0.0, 0.0))
+    camera = CameraSensor(sim.physics, sim.models["cam"], sim.plugins["cam"].cameras[0], ray_kernel=kernel)
+    frame = camera.render(scene_colours(sim.models.values()))
+    (x, _, _), _ = sim.models["cam"].link_pose("base")
+    # The centre row and column sit between pixels: the four pixels about the centre look at the east wall.
+    centre = frame.depth[23:25, 31:33]
+    assert centre == pytest.approx(np.full((2, 2), ROOM_X + HALF_INSIDE - x), abs=RANGE_TOLERANCE)
+    assert tuple(frame.rgb[24, 32]) != tuple(int(c * 255 + 0.5) for c in SKY_COLOR)
+    assert np.isnan(frame.depth[0]).all()  # the top row looks over the 0.3 m walls into the sky
 
 
 def _drive_at_the_wall(kernel: bool, steps: int):

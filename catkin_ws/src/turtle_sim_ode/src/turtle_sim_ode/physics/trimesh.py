@@ -57,6 +57,7 @@ def _declare(lib: Optional[ctypes.CDLL]) -> Optional[ctypes.CDLL]:
         "dGeomSetQuaternion": (None, [p, ctypes.POINTER(ctypes.c_double)]),
         "dGeomGetPosition": (ctypes.POINTER(ctypes.c_double), [p]),
         "dGeomGetQuaternion": (None, [p, ctypes.POINTER(ctypes.c_double)]),
+        "dGeomGetRotation": (ctypes.POINTER(ctypes.c_double), [p]),
         "dGeomGetAABB": (None, [p, ctypes.POINTER(ctypes.c_double)]),
         "dGeomGetBody": (p, [p]),
         "dBodyGetWorld": (p, [p]),
@@ -148,6 +149,21 @@ class MeshGeom:
         quaternion = (ctypes.c_double * 4)()
         _ODE.dGeomGetQuaternion(self._gid, quaternion)
         return tuple(quaternion)  # type: ignore[return-value]
+
+    def getRotation(self) -> Tuple[float, ...]:  # noqa: N802
+        """World from mesh, 9 numbers row-major, as PyODE's (ODE keeps a 3 x 4 matrix)."""
+        matrix = _ODE.dGeomGetRotation(self._gid)
+        return tuple(matrix[row * 4 + column] for row in range(3) for column in range(3))
+
+    @property
+    def vertices(self) -> numpy.ndarray:
+        """(N, 3) float64 in the mesh's frame (ODE's own copy: do not change it)."""
+        return self._vertices
+
+    @property
+    def faces(self) -> numpy.ndarray:
+        """(M, 3) uint32 vertex indices."""
+        return self._faces
 
     def getAABB(self) -> Tuple[float, float, float, float, float, float]:  # noqa: N802
         box = (ctypes.c_double * 6)()

@@ -1,6 +1,7 @@
-"""A camera on a model's link, rendered on the CPU by casting one ray per pixel (numpy, see sensors.raycast) into
-the collision geometry of every other model and the ground plane: a shaded colour image, a depth image (metres
-along the optical axis, as Gazebo's depth cameras give it) and an organised point cloud in the optical frame.
+"""A camera on a model's link, rendered on the CPU by casting one ray per pixel (in C, see sensors.ray_kernel, or
+with numpy, see sensors.raycast) into the collision geometry (primitives and meshes) of every other model and the
+ground plane: a shaded colour image, a depth image (metres along the optical axis, as Gazebo's depth cameras give
+it) and an organised point cloud in the optical frame.
 
 The optical frame is gazebo_ros's: z along the sensor's x (forward), x to the image's right (the sensor's -y),
 y down (the sensor's -z). A pixel (i, j) looks through its centre: x/z = (i - cx) / f, y/z = (j - cy) / f with
@@ -21,7 +22,8 @@ from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.config import CameraConfig
 from turtle_sim_ode.sensors.ray_kernel import RayCaster
 from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
-from turtle_sim_ode.sensors.raycast import hit_plane, primitive
+from turtle_sim_ode.physics.trimesh import MeshGeom
+from turtle_sim_ode.sensors.raycast import hit_plane, hit_triangle, primitive
 from turtle_sim_ode.sensors.rays import world_geoms
 
 # Gazebo's defaults: the scene's background, the ground_plane model's material, the sun model's direction.
@@ -32,6 +34,13 @@ AMBIENT = 0.4  # share of a surface's colour lit from everywhere; the rest from 
 CLOUD_POINT_STEP = 32  # bytes a point: x, y, z, padding, rgb, padding (PointCloud2Modifier "xyz", "rgb")
 # Optical frame from sensor frame (rows: optical x, y, z in sensor axes).
 OPTICAL_FROM_SENSOR = np.array([[0.0, -1.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]])
+
+
+def mesh_triangles(mesh: MeshGeom) -> np.ndarray:
+    """A mesh's triangles' corners in the world, (M, 3, 3)."""
+    rotation = np.array(mesh.getRotation()).reshape(3, 3)
+    world = mesh.vertices @ rotation.T + np.array(mesh.getPosition())
+    return world[mesh.faces]
 
 
 def scene_colours(models: Iterable[BuiltModel]) -> Dict[ode.GeomObject, RGB]:
@@ -189,6 +198,17 @@ class CameraSensor:
         t, normals = hit_plane(origin, dirs.reshape(-1, 3), np.array(normal, dtype=float), offset, t_min)
         paint(t, normals, GROUND_COLOR, full)
         for geom in world_geoms(self.physics, self.model):
+            if isinstance(geom, MeshGeom):
+                for corners in mesh_triangles(geom):
+                    centre = corners.mean(axis=0)
+                    box = self._pixel_box(
+                        (centre - origin) @ rotation, float(np.linalg.norm(corners - centre, axis=1).max())
+                    )
+                    if box is not None:
+                        i0, i1, j0, j1 = box
+                        t, normals = hit_triangle(origin, dirs[j0:j1, i0:i1].reshape(-1, 3), corners, t_min)
+                        paint(t, normals, colours.get(geom, DEFAULT_COLOR), box)
+                continue
             shape = primitive(geom)
             if shape is None:
                 continue

@@ -12,6 +12,7 @@ import numpy as np
 import ode
 
 from turtle_sim_ode.physics.contact_kernel import find_library
+from turtle_sim_ode.physics.trimesh import MeshGeom
 
 LIBRARY = "libturtle_sim_ode_rays.so"
 STRIDE = 20  # doubles per primitive row (see src/ray_kernel.c)
@@ -28,6 +29,7 @@ def library() -> Optional[ctypes.CDLL]:
     double_p, float_p, byte_p = (ctypes.POINTER(t) for t in (ctypes.c_double, ctypes.c_float, ctypes.c_uint8))
     lib.tso_render.restype = ctypes.c_long
     lib.tso_render.argtypes = [ctypes.c_int, ctypes.c_int, double_p, double_p, ctypes.c_int, double_p]
+    lib.tso_render.argtypes += [ctypes.c_int, ctypes.POINTER(Mesh)]
     lib.tso_render.argtypes += [ctypes.c_double] * 5 + [double_p, ctypes.c_double, double_p, double_p, float_p]
     lib.tso_render.argtypes += [byte_p, ctypes.c_int]
     lib.tso_cloud.restype = ctypes.c_long
@@ -37,7 +39,7 @@ def library() -> Optional[ctypes.CDLL]:
 
 
 def primitive_row(geom: ode.GeomObject, colour: RGB) -> Optional[np.ndarray]:
-    """The geom as a row of the C table, None for shapes it does not draw (trimeshes, rays)."""
+    """The geom as a row of the C table, None for shapes that are not primitives (trimeshes: see Mesh; rays)."""
     row = np.zeros(STRIDE)
     if isinstance(geom, ode.GeomPlane):
         normal, offset = geom.getParams()
@@ -60,6 +62,22 @@ def primitive_row(geom: ode.GeomObject, colour: RGB) -> Optional[np.ndarray]:
         return None
     row[16:19] = colour
     return row
+
+
+class Mesh(ctypes.Structure):
+    """src/ray_kernel.c's Mesh."""
+
+    _fields_ = [
+        ("pose", ctypes.POINTER(ctypes.c_double)),
+        ("face_count", ctypes.c_int),
+        ("vertices", ctypes.POINTER(ctypes.c_double)),
+        ("faces", ctypes.POINTER(ctypes.c_uint32)),
+    ]
+
+
+def mesh_pose(geom: MeshGeom, colour: RGB) -> np.ndarray:
+    """A mesh's row for Mesh.pose: position, rotation (world from mesh, row-major), colour."""
+    return np.concatenate((geom.getPosition(), geom.getRotation(), colour)).astype(np.float64)
 
 
 def _pointer(array: np.ndarray, kind: type) -> ctypes._Pointer:
@@ -95,8 +113,22 @@ class RayCaster:
         ambient: float,
         sky: RGB,
     ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        geoms = list(geoms)
         rows = [row for row in (primitive_row(g, colours.get(g, default)) for g in geoms) if row is not None]
         table = np.ascontiguousarray(np.array(rows) if rows else np.zeros((0, STRIDE)))
+        meshes = [g for g in geoms if isinstance(g, MeshGeom)]
+        poses = [mesh_pose(mesh, colours.get(mesh, default)) for mesh in meshes]  # alive until tso_render returns
+        mesh_table = (Mesh * len(meshes))(
+            *(
+                Mesh(
+                    _pointer(pose, ctypes.c_double),
+                    len(m.faces),
+                    _pointer(m.vertices, ctypes.c_double),
+                    _pointer(m.faces, ctypes.c_uint32),
+                )
+                for pose, m in zip(poses, meshes)
+            )
+        )
         width, height = self.size
         distance = self._distance
         depth = np.empty((height, width), dtype=np.float32)
@@ -113,6 +145,8 @@ class RayCaster:
             _pointer(rotation, double),
             len(rows),
             _pointer(table, double),
+            len(meshes),
+            mesh_table,
             near,
             far,
             *lens,

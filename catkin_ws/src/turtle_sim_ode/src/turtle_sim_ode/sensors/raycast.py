@@ -104,6 +104,27 @@ def hit_plane(origin: np.ndarray, dirs: np.ndarray, normal: np.ndarray, offset: 
     return np.where(hit, t, np.inf), np.broadcast_to(normal, dirs.shape)
 
 
+def hit_triangle(origin: np.ndarray, dirs: np.ndarray, corners: np.ndarray, t_min: float) -> Hits:
+    """A triangle (``corners`` (3, 3), world frame) from either side (Moller-Trumbore); the normal faces ``origin``."""
+    edge1, edge2 = corners[1] - corners[0], corners[2] - corners[0]
+    normal = np.cross(edge1, edge2)
+    length = float(np.linalg.norm(normal))
+    if not length > 0.0:
+        return np.full(len(dirs), np.inf), np.zeros_like(dirs)
+    to_origin = origin - corners[0]
+    normal = normal / length * (1.0 if normal @ to_origin >= 0 else -1.0)
+    p = np.cross(dirs, edge2)
+    det = p @ edge1
+    q = np.cross(to_origin, edge1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inverse = 1.0 / det
+        a = (p @ to_origin) * inverse
+        b = (dirs @ q) * inverse
+        t = float(edge2 @ q) * inverse
+        hit = (det != 0) & (a >= 0) & (b >= 0) & (a + b <= 1) & (t > t_min)
+    return np.where(hit, t, np.inf), np.broadcast_to(normal, dirs.shape)
+
+
 class Primitive:
     """One ODE geom as the ray caster sees it: its pose in the world, a bounding radius and a ``hit`` in its frame."""
 
@@ -134,7 +155,7 @@ class Primitive:
 
 
 def primitive(geom: ode.GeomObject) -> Optional[Primitive]:
-    """The geom as a Primitive, None for shapes the cameras do not draw (trimeshes, rays, planes: see hit_plane)."""
+    """The geom as a Primitive, None for other shapes (trimeshes: see hit_triangle; planes: see hit_plane; rays)."""
     try:
         return Primitive(geom)
     except TypeError:
