@@ -76,7 +76,9 @@ def targets(results: Dict[str, Any]) -> List[Dict[str, Any]]:
     node_runs = cameras.get("node", {}).get("runs", [])
     target = CAMERAS[0]
     unwatched = next((r for r in node_runs if r["rate_hz"] and "unwatched" in r["camera"]), None)
-    watched = next((r for r in node_runs if (r["width"], r["height"], r["rate_hz"]) == target and r is not unwatched), None)
+    watched = next(
+        (r for r in node_runs if (r["width"], r["height"], r["rate_hz"]) == target and r is not unwatched), None
+    )
     in_process_row = next((r for r in in_process if (r["width"], r["height"], r["rate_hz"]) == target), None)
     goal = ">= %.2f" % TARGET_SHARE
     rows += [
@@ -251,7 +253,9 @@ def table(results: Dict[str, Any]) -> str:
     section("3. real time, real_time_factor 1, 1 TurtleBot, 1 ms", "real_time", real_time_lines)
     section("4. roslaunch turtle_sim_ode turtlebot_world.launch to first /odom, fresh master", "launch", launch_lines)
     section("5. peer: the same URDF in PyBullet, same dt and wheel command", "peer", peer_lines)
-    section("6. cameras: 1 TurtleBot with an RGB-D camera in a furnished room, rates in sim time", "cameras", camera_lines)
+    section(
+        "6. cameras: 1 TurtleBot with an RGB-D camera in a furnished room, rates in sim time", "cameras", camera_lines
+    )
     lines.append("targets")
     lines.append("   %-44s %10s  %-13s %s" % ("target", "value", "goal", "result"))
     for t in results["targets"]:
