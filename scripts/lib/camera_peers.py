@@ -18,7 +18,7 @@ from bench_camera import CAMERAS, MODEL, turtlebot_in_room
 from peer_venv import venv_with
 from process_stats import cpu_ticks
 
-REPO = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+REPO = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 VENV = os.path.join(REPO, ".cache", "renderer-venv")
 PEER_SCRIPT = os.path.join(REPO, "scripts", "lib", "renderer_peers.py")
 # Library: (pip installs in order, the check that they work). pyrender pins PyOpenGL 3.1.0, whose OSMesa binding
@@ -55,8 +55,14 @@ def export_scene(directory: str, frames: int, repeats: int) -> Tuple[str, str, D
     """Drives the robot along its circle, and at ``frames`` moments GAP_STEPS apart writes what the camera sees and
     times our render ``repeats`` times per size: (scene JSON path, our depths' .npz path, our timings)."""
     from turtle_sim_ode.models.materials import DEFAULT_COLOR
-    from turtle_sim_ode.sensors.camera import AMBIENT, GROUND_COLOR, SKY_COLOR, SUN_DIRECTION
-    from turtle_sim_ode.sensors.camera import CameraSensor, scene_colours
+    from turtle_sim_ode.sensors.camera import (
+        AMBIENT,
+        GROUND_COLOR,
+        SKY_COLOR,
+        SUN_DIRECTION,
+        CameraSensor,
+        scene_colours,
+    )
     from turtle_sim_ode.sensors.ray_kernel import primitive_row
     from turtle_sim_ode.sensors.rays import world_geoms
 
@@ -128,7 +134,7 @@ def run_peer(renderer: str, library: str, paths: Tuple[str, str], repeats: int, 
     command = [python, PEER_SCRIPT, "--renderer", renderer, "--scene", paths[0], "--ours", paths[1], "--out", out]
     command += ["--repeats", str(repeats), "--threads", str(threads)]
     try:
-        run = subprocess.run(command, capture_output=True, text=True, timeout=PEER_TIMEOUT_S)
+        run = subprocess.run(command, check=False, capture_output=True, text=True, timeout=PEER_TIMEOUT_S)
     except subprocess.TimeoutExpired:
         return {"renderer": renderer, "status": "unavailable: took over %d s" % PEER_TIMEOUT_S}
     if run.returncode != 0:

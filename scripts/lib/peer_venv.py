@@ -20,11 +20,14 @@ def venv_with(venv: str, installs: Sequence[Sequence[str]], check: str, timeout_
     os.makedirs(os.path.dirname(venv), exist_ok=True)
     with open(venv + ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
-        if os.access(python, os.X_OK) and subprocess.run(check_command, capture_output=True).returncode == 0:
+        if (
+            os.access(python, os.X_OK)
+            and subprocess.run(check_command, check=False, capture_output=True).returncode == 0
+        ):
             return python, "reused " + venv
         if not os.access(python, os.X_OK):
             shutil.rmtree(venv, ignore_errors=True)
-            made = subprocess.run(["/usr/bin/python3", "-m", "venv", venv], capture_output=True, text=True)
+            made = subprocess.run(["/usr/bin/python3", "-m", "venv", venv], check=False, capture_output=True, text=True)
             if made.returncode != 0:
                 return None, "/usr/bin/python3 -m venv failed: " + (made.stdout + made.stderr).strip()[-300:]
         start = time.monotonic()
@@ -33,6 +36,7 @@ def venv_with(venv: str, installs: Sequence[Sequence[str]], check: str, timeout_
             try:
                 installed = subprocess.run(
                     [python, "-m", "pip", "install", "-q"] + list(packages),
+                    check=False,
                     capture_output=True,
                     text=True,
                     timeout=timeout_s,
@@ -41,7 +45,7 @@ def venv_with(venv: str, installs: Sequence[Sequence[str]], check: str, timeout_
                 return None, "pip install %s took over %d s" % (" ".join(packages), timeout_s)
             if installed.returncode != 0:
                 return None, "pip install %s failed: %s" % (" ".join(packages), installed.stderr.strip()[-300:])
-        checked = subprocess.run(check_command, capture_output=True, text=True)
+        checked = subprocess.run(check_command, check=False, capture_output=True, text=True)
         if checked.returncode != 0:
             last_line = (checked.stdout + checked.stderr).strip().splitlines()[-1:]
             return None, "installed, but %r fails: %s" % (check, "".join(last_line))
