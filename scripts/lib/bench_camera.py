@@ -10,6 +10,7 @@ the figure that matters is the ratio with / without camera of one run.
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import sys
 import time
@@ -211,10 +212,27 @@ def table(result: Dict[str, Any]) -> str:
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="1 s of sim time per run, 2 repeats")
+    parser.add_argument(
+        "--peers", action="store_true", help="also pyrender and Open3D on the same frames (camera_peers)"
+    )
+    parser.add_argument("--peer-threads", type=int, default=1, help="the peers' threads (ours: 1); 0: their default")
+    parser.add_argument("--peers-json", help="write the peers' figures to this file")
     args = parser.parse_args(argv)
     sys.path.insert(0, os.path.join(PACKAGE, "src"))
     result = camera_cost(1000, 2) if args.quick else camera_cost()
     print(table(result))
+    if args.peers:
+        import camera_peers  # imports this module: here, not at the top
+
+        peers = (
+            camera_peers.compare(4, 2, args.peer_threads)
+            if args.quick
+            else camera_peers.compare(8, 3, args.peer_threads)
+        )
+        print(camera_peers.table(peers))
+        if args.peers_json:
+            with open(args.peers_json, "w") as out:
+                json.dump(peers, out, indent=1)
     return 0
 
 

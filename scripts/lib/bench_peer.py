@@ -2,16 +2,14 @@
 command, run by the Python of a venv of its own under .cache/ (installed on first use), against section 1's figures."""
 from __future__ import annotations
 
-import fcntl
 import json
 import os
-import shutil
 import subprocess
-import time
 from typing import Any, Dict, Optional, Tuple
 
 from bench_physics import circle_radius
 from bench_plan import CIRCLE, REPO, URDF_PATH, BenchError, Plan
+from peer_venv import venv_with
 
 VENV = os.path.join(REPO, ".cache", "bench-venv")
 PEER_SCRIPT = os.path.join(REPO, "scripts", "lib", "pybullet_peer.py")
@@ -22,33 +20,7 @@ PEER_TIMEOUT_S = 600
 
 def peer_python() -> Tuple[Optional[str], str]:
     """(python of the venv with PyBullet, how it came to be), installing it if needed, or (None, why not)."""
-    python = os.path.join(VENV, "bin", "python")
-    check = [python, "-c", "import pybullet"]
-    os.makedirs(os.path.dirname(VENV), exist_ok=True)
-    with open(VENV + ".lock", "w") as lock:  # concurrent runs install once
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        if os.access(python, os.X_OK) and subprocess.run(check, capture_output=True).returncode == 0:
-            return python, "reused " + VENV
-        shutil.rmtree(VENV, ignore_errors=True)
-        made = subprocess.run(["/usr/bin/python3", "-m", "venv", VENV], capture_output=True, text=True)
-        if made.returncode != 0:
-            return None, "/usr/bin/python3 -m venv failed: " + (made.stdout + made.stderr).strip()[-300:]
-        print("  installing %s into %s ..." % (" ".join(PEER_PACKAGES), VENV), flush=True)
-        start = time.monotonic()
-        try:
-            installed = subprocess.run(
-                [python, "-m", "pip", "install", "-q"] + list(PEER_PACKAGES),
-                capture_output=True,
-                text=True,
-                timeout=PIP_TIMEOUT_S,
-            )
-        except subprocess.TimeoutExpired:
-            shutil.rmtree(VENV, ignore_errors=True)
-            return None, "pip install %s took over %d s" % (" ".join(PEER_PACKAGES), PIP_TIMEOUT_S)
-        if installed.returncode != 0 or subprocess.run(check, capture_output=True).returncode != 0:
-            shutil.rmtree(VENV, ignore_errors=True)
-            return None, "pip install %s failed: %s" % (" ".join(PEER_PACKAGES), installed.stderr.strip()[-300:])
-        return python, "installed into %s in %.0f s" % (VENV, time.monotonic() - start)
+    return venv_with(VENV, [PEER_PACKAGES], "import pybullet", PIP_TIMEOUT_S)
 
 
 def peer(plan: Plan, ours: Dict[str, Any], log_dir: str) -> Dict[str, Any]:
