@@ -215,7 +215,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument(
         "--peers", action="store_true", help="also pyrender and Open3D on the same frames (camera_peers)"
     )
-    parser.add_argument("--peer-threads", type=int, default=1, help="the peers' threads (ours: 1); 0: their default")
+    parser.add_argument(
+        "--peer-threads", type=int, default=1, help="threads of every renderer, ours too (0: each one's default)"
+    )
     parser.add_argument("--peers-json", help="write the peers' figures to this file")
     args = parser.parse_args(argv)
     sys.path.insert(0, os.path.join(PACKAGE, "src"))

@@ -51,9 +51,10 @@ def describe(row: np.ndarray) -> Dict[str, Any]:
     return shape
 
 
-def export_scene(directory: str, frames: int, repeats: int) -> Tuple[str, str, Dict[str, Any]]:
+def export_scene(directory: str, frames: int, repeats: int, threads: int) -> Tuple[str, str, Dict[str, Any]]:
     """Drives the robot along its circle, and at ``frames`` moments GAP_STEPS apart writes what the camera sees and
-    times our render ``repeats`` times per size: (scene JSON path, our depths' .npz path, our timings)."""
+    times our render ``repeats`` times per size on ``threads`` (0: every CPU): (scene JSON path, our depths' .npz
+    path, our timings)."""
     from turtle_sim_ode.models.materials import DEFAULT_COLOR
     from turtle_sim_ode.sensors.camera import (
         AMBIENT,
@@ -71,7 +72,8 @@ def export_scene(directory: str, frames: int, repeats: int) -> Tuple[str, str, D
     sensors, setup_s = [], []
     for width, height, _ in CAMERAS:
         start = time.perf_counter()
-        sensors.append(CameraSensor(sim.physics, model, dataclasses.replace(config, width=width, height=height)))
+        sized = dataclasses.replace(config, width=width, height=height)
+        sensors.append(CameraSensor(sim.physics, model, sized, threads=threads or None))
         setup_s.append(time.perf_counter() - start)
         if not sensors[-1].uses_ray_kernel:
             raise RuntimeError("libturtle_sim_ode_rays.so is not built: run scripts/build.sh")
@@ -147,11 +149,11 @@ def run_peer(renderer: str, library: str, paths: Tuple[str, str], repeats: int, 
 
 
 def compare(frames: int, repeats: int, threads: int) -> Dict[str, Any]:
-    """Ours and every peer on ``frames`` frames, each rendered ``repeats`` times, peers with ``threads`` threads
-    (0: their default), and the share of CPU ticks the host stole meanwhile."""
+    """Ours and every peer on ``frames`` frames, each rendered ``repeats`` times, all with ``threads`` threads (0:
+    each one's default; ours: every CPU), and the share of CPU ticks the host stole meanwhile."""
     ticks = cpu_ticks()
     with tempfile.TemporaryDirectory(prefix="camera_peers_") as directory:
-        scene_path, ours_path, ours = export_scene(directory, frames, repeats)
+        scene_path, ours_path, ours = export_scene(directory, frames, repeats, threads)
         rows = [ours] + [run_peer(r, lib, (scene_path, ours_path), repeats, threads) for r, lib in RENDERERS]
     total, stolen = (after - before for after, before in zip(cpu_ticks(), ticks))
     return {

@@ -77,9 +77,11 @@ class CameraSensor:
         sun_direction: Optional[Tuple[float, float, float]] = None,
         ray_kernel: bool = True,
         sky: Optional[RGB] = None,
+        threads: Optional[int] = None,
     ) -> None:
         """``sun_direction`` (the world's directional light) and ``sky`` default to Gazebo's; ``ray_kernel``: cast
-        the rays in C (src/ray_kernel.c) when the library is built, else with numpy."""
+        the rays in C (src/ray_kernel.c) when the library is built, else with numpy; ``threads``: the C kernel's
+        (default: every CPU the process may use)."""
         model.link_transform(config.link)  # KeyError now for a missing link
         self.physics = physics
         self.model = model
@@ -96,7 +98,7 @@ class CameraSensor:
         light = -np.asarray(sun_direction if sun_direction is not None else SUN_DIRECTION, dtype=float)
         self._light = light / np.linalg.norm(light)
         lib = ray_kernel_library() if ray_kernel else None
-        self._caster = RayCaster(lib, width, height) if lib is not None else None
+        self._caster = RayCaster(lib, width, height, threads) if lib is not None else None
         if self._caster is None:  # the numpy rays' directions (tens of MB for a full-HD camera: only if used)
             optical = np.empty((height, width, 3))
             optical[:, :, 0] = u[None, :]
