@@ -119,6 +119,7 @@ def measure_rtf_task(
         urdf = urdf_file.read()
     clock: List[Tuple[float, float]] = []  # (wall, sim) of each /clock message
     topics = {"/clock": "clock", "/tf": "tf"}
+    bulk_topics: Dict[str, str] = {}  # the camera's: read as they come, by a reader of their own
     robot_topic_sets = []
     if room:
         rospy.wait_for_service("/gazebo/spawn_sdf_model", STARTUP_TIMEOUT_S)
@@ -139,7 +140,8 @@ def measure_rtf_task(
         robot_topic_sets.append(robot_topics(name))
         topics.update({topic: kind for kind, topic in robot_topic_sets[-1].items()})
         if watch_camera and index == 0:
-            topics.update({"/%s/%s" % (name, topic): kind for kind, topic in CAMERA_TOPICS.items()})
+            bulk_topics = {"/%s/%s" % (name, topic): kind for kind, topic in CAMERA_TOPICS.items()}
+            topics.update(bulk_topics)
 
     # Raw TCPROS readers, not rospy subscribers: every message is still sent and read, but this process spends
     # about a microsecond on each instead of a rospy callback's tens, which would load the machine it measures.
@@ -156,8 +158,12 @@ def measure_rtf_task(
     # them), for its arrival times; the rest drained every READ_BATCH_S.
     master_uri, caller_id = rosgraph.get_master_uri(), rospy.get_name()
     clock_stream = TopicStream(master_uri, caller_id, "/clock", on_clock, tcp_nodelay=True)
-    streams = [TopicStream(master_uri, caller_id, topic) for topic in topics if topic != "/clock"]
+    streams = [TopicStream(master_uri, caller_id, t) for t in topics if t != "/clock" and t not in bulk_topics]
     readers = [Reader([clock_stream]), Reader(streams, READ_BATCH_S)]
+    if bulk_topics:  # megabytes a message: read at once, as a roscpp or rospy subscriber's thread would
+        camera_streams = [TopicStream(master_uri, caller_id, topic, bulk=True) for topic in bulk_topics]
+        readers.append(Reader(camera_streams))
+        streams += camera_streams
     streams.append(clock_stream)
 
     def counts() -> Dict[str, int]:

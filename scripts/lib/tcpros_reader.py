@@ -46,15 +46,22 @@ class TopicStream:
         topic: str,
         on_message: Optional[Callable[[float, bytes], None]] = None,
         tcp_nodelay: bool = False,
+        bulk: bool = False,
     ) -> None:
         """``tcp_nodelay`` asks the publisher to send each message at once (for arrival times): more packets, and
-        more work for both ends, than letting TCP gather small messages as rospy subscribers do by default."""
+        more work for both ends, than letting TCP gather small messages as rospy subscribers do by default.
+        ``bulk``: for messages of megabytes (a camera's): they are counted, not kept (``last`` stays None) nor
+        copied, and the kernel sizes the socket's buffer itself (up to net.ipv4.tcp_rmem's maximum)."""
         self.topic = topic
         self._tcp_nodelay = tcp_nodelay
         self.count = 0
         self.last: Optional[bytes] = None
         self._on_message = on_message
         self._buffer = bytearray()
+        self._bulk = bulk
+        self._scratch = bytearray(1 << 20) if bulk else None
+        self._length = bytearray()  # bulk: the length prefix read so far
+        self._skip = 0  # bulk: payload bytes of the current message still to come
         self.sock = self._connect(master_uri, caller_id)
 
     def _connect(self, master_uri: str, caller_id: str) -> socket.socket:
@@ -84,11 +91,15 @@ class TopicStream:
         if b"error=" in answer:
             raise ConnectionError("%s: %s" % (self.topic, answer))
         sock.settimeout(None)
-        sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 1 << 20)
+        if not self._bulk:
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 1 << 20)
         return sock
 
     def read(self) -> None:
         """Take what has arrived (call when the socket is readable)."""
+        if self._bulk:
+            self._count_bulk()
+            return
         chunk = self.sock.recv(1 << 20)
         if not chunk:
             raise ConnectionError("%s: the publisher closed the connection" % self.topic)
@@ -107,6 +118,29 @@ class TopicStream:
             if self._on_message is not None:
                 self._on_message(now, payload)
         del data[:offset]
+
+    def _count_bulk(self) -> None:
+        """Read into one reused buffer, following the length prefixes and counting the messages they close."""
+        size = self.sock.recv_into(self._scratch)
+        if not size:
+            raise ConnectionError("%s: the publisher closed the connection" % self.topic)
+        offset = 0
+        while offset < size:
+            if self._skip:
+                taken = min(self._skip, size - offset)
+                self._skip -= taken
+                offset += taken
+                if not self._skip:
+                    self.count += 1
+                continue
+            taken = min(4 - len(self._length), size - offset)
+            self._length += self._scratch[offset : offset + taken]
+            offset += taken
+            if len(self._length) == 4:
+                (self._skip,) = _LENGTH.unpack(self._length)
+                self._length = bytearray()
+                if not self._skip:
+                    self.count += 1
 
 
 class Reader:

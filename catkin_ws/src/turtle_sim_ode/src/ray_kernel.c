@@ -631,7 +631,7 @@ static void* renderBand(void* arg)
 
 enum
 {
-  kMaxThreads = 16,
+  kMaxThreads = 8,
   kMinRowsPerThread = 16 /* below this a thread costs more than it saves */
 };
 
