@@ -155,6 +155,7 @@ def test_depth_and_camera_configs_take_gazebo_ros_defaults_and_the_models_tags()
     [
         ("<horizontal_fov>1.047</horizontal_fov>", "<horizontal_fov>4</horizontal_fov>"),
         ("<width>320</width>", "<width>0</width>"),
+        ("<width>320</width><height>240</height>", "<width>8192</width><height>8192</height>"),
         ("<near>0.05</near>", "<near>20</near>"),
     ],
 )

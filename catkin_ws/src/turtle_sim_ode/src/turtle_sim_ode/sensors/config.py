@@ -264,6 +264,11 @@ def _sensor_pose(sensor: Element, what: str) -> Tuple[float, float, float, float
     return pose  # type: ignore[return-value]
 
 
+# A camera renders at most this many pixels: a 2048 x 2048 depth camera's buffers (cloud, depth, colour) take 190 MB
+# and a frame about 0.1 s; the 8192 x 8192 each side may have would take 3 GB.
+MAX_CAMERA_PIXELS = 2048 * 2048
+
+
 def _int(element: Optional[Element], path: str, default: int, what: str) -> int:
     text = child_text(element, path)
     try:
@@ -305,6 +310,11 @@ def _camera_config(link: str, sensor: Element, plugin: Element, warnings: List[s
     cutoff_max = read_number(
         params.get("pointCloudCutoffMax"), f"{what} <pointCloudCutoffMax>", defaults.cutoff_max, minimum=0.0
     )
+    width, height = _int(camera, "image/width", defaults.width, what), _int(
+        camera, "image/height", defaults.height, what
+    )
+    if width * height > MAX_CAMERA_PIXELS:
+        raise ModelError(f"{what} <image> {width}x{height} is over {MAX_CAMERA_PIXELS} pixels (2048x2048)")
     # The depth plugins' own defaults for the image topics (gazebo_ros_openni_kinect / _depth_camera).
     image_topic, info_topic = ("ir/image_raw", "ir/camera_info") if depth else ("image_raw", "camera_info")
     return CameraConfig(
@@ -312,8 +322,8 @@ def _camera_config(link: str, sensor: Element, plugin: Element, warnings: List[s
         name=name,
         depth=depth,
         horizontal_fov=fov,
-        width=_int(camera, "image/width", defaults.width, what),
-        height=_int(camera, "image/height", defaults.height, what),
+        width=width,
+        height=height,
         image_format=image_format,
         near=near,
         far=far,
