@@ -1,5 +1,6 @@
-"""Collision and visual meshes: STL (binary and ASCII, read with numpy-stl), Wavefront OBJ and Collada (.dae) triangles, from
-the bytes models.resources read; and ``load_meshes``, which fills a parsed model's <mesh> collisions with them.
+"""Collision and visual meshes: STL (binary and ASCII, read with numpy-stl), Wavefront OBJ and Collada (.dae)
+triangles, from the bytes models.resources read; ``load_meshes``, which fills a parsed model's <mesh> collisions with
+them, and ``mesh_file`` and ``scaled_mesh``, which the cameras read visual meshes with.
 
 numpy-stl (Debian's python3-stl) reads a 20,000-triangle binary STL in about 1 ms. pyassimp (Debian's
 python3-pyassimp 5.2.5) would read all three formats, but crashes the process (SIGSEGV) on any STL on Debian 12, and

@@ -1,7 +1,7 @@
 """A camera on a model's link, rendered on the CPU by casting one ray per pixel (in C, see sensors.ray_kernel, or
 with numpy, see sensors.raycast) into what sensors.scene draws of every other model (the links' visuals, or their
-collisions where they have none) and the ground plane: a shaded colour image, a depth image (metres along the optical axis, as Gazebo's depth cameras give
-it) and an organised point cloud in the optical frame.
+collisions where they have none) and the ground plane: a shaded colour image, a depth image (metres along the
+optical axis, as Gazebo's depth cameras give it) and an organised point cloud in the optical frame.
 
 The optical frame is gazebo_ros's: z along the sensor's x (forward), x to the image's right (the sensor's -y),
 y down (the sensor's -z). A pixel (i, j) looks through its centre: x/z = (i - cx) / f, y/z = (j - cy) / f with
