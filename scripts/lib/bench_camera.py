@@ -111,7 +111,7 @@ def frame_work(sim: Any, config: Any, ray_kernel: bool = True) -> Callable[[], N
     cloud packed into their messages' bytes (what the node writes to the sockets); ``ray_kernel`` False: the rays
     and the cloud in numpy."""
     from turtle_sim_ode.ros.camera_topics import colour_image, packer, templates
-    from turtle_sim_ode.sensors.camera import CameraSensor, scene_colours
+    from turtle_sim_ode.sensors.camera import CameraSensor
 
     sensor = CameraSensor(sim.physics, sim.models[MODEL], config, ray_kernel=ray_kernel)
     if ray_kernel and not sensor.uses_ray_kernel:
@@ -120,7 +120,7 @@ def frame_work(sim: Any, config: Any, ray_kernel: bool = True) -> Callable[[], N
     pack_image, pack_depth, pack_cloud = (packer(messages[key]) for key in ("image", "depth", "points"))
 
     def work() -> None:
-        frame = sensor.render(scene_colours(sim.models.values()))
+        frame = sensor.render(sim.scene)
         pack_image(1, 0, 0, colour_image(frame.rgb, config.encoding))
         depth, cloud, dense = sensor.organised_cloud(frame)
         pack_depth(1, 0, 0, depth)

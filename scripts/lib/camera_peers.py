@@ -2,7 +2,7 @@
 casting) against our rays in C, on the same frames of bench_camera's room. The scene (primitives, camera poses along
 the robot's circle, lens, light) goes to scripts/lib/renderer_peers.py as JSON, our depth images as .npz; that script
 runs in the venv .cache/renderer-venv (made on first use: peer_venv), one process per renderer. Ours is timed here:
-CameraSensor.render on each frame, which rebuilds its primitive table from the geoms every frame."""
+CameraSensor.render on each frame, which rebuilds its primitive table from the scene every frame."""
 from __future__ import annotations
 
 import dataclasses
@@ -35,7 +35,7 @@ GAP_STEPS = 1500  # 1.5 s of sim time between frames: 0.75 rad along the circle
 
 
 def describe(row: np.ndarray) -> Dict[str, Any]:
-    """A row of the C kernel's primitive table (sensors.ray_kernel.primitive_row) as the peers' JSON has it."""
+    """A row of the C kernel's primitive table (sensors.ray_kernel.shape_row) as the peers' JSON has it."""
     from turtle_sim_ode.sensors.ray_kernel import BOX, CAPSULE, CYLINDER, PLANE, SPHERE
 
     kind = int(row[0])
@@ -55,17 +55,8 @@ def export_scene(directory: str, frames: int, repeats: int, threads: int) -> Tup
     """Drives the robot along its circle, and at ``frames`` moments GAP_STEPS apart writes what the camera sees and
     times our render ``repeats`` times per size on ``threads`` (0: every CPU): (scene JSON path, our depths' .npz
     path, our timings)."""
-    from turtle_sim_ode.models.materials import DEFAULT_COLOR
-    from turtle_sim_ode.sensors.camera import (
-        AMBIENT,
-        GROUND_COLOR,
-        SKY_COLOR,
-        SUN_DIRECTION,
-        CameraSensor,
-        scene_colours,
-    )
+    from turtle_sim_ode.sensors.camera import AMBIENT, GROUND_COLOR, SKY_COLOR, SUN_DIRECTION, CameraSensor
     from turtle_sim_ode.sensors.ray_kernel import primitive_row
-    from turtle_sim_ode.sensors.rays import world_geoms
 
     sim, _ = turtlebot_in_room(CAMERAS[0])
     config, model, ground = sim.plugins[MODEL].cameras[0], sim.models[MODEL], sim.physics.ground
@@ -83,16 +74,15 @@ def export_scene(directory: str, frames: int, repeats: int, threads: int) -> Tup
     for _ in range(frames):
         for _ in range(GAP_STEPS):
             sim.step()
-        colours = scene_colours(sim.models.values())
-        rows = [primitive_row(geom, colours.get(geom, DEFAULT_COLOR)) for geom in world_geoms(sim.physics, model)]
-        rows.append(primitive_row(ground, GROUND_COLOR))
+        table, _ = sim.scene.drawables(sim.physics, model)  # the room has no meshes
+        rows = list(table) + [primitive_row(ground, GROUND_COLOR)]
         position, rotation = sensors[0].optical_pose()
         camera = {"position": position.tolist(), "rotation": rotation.tolist()}
-        scene_frames.append({"camera": camera, "primitives": [describe(row) for row in rows if row is not None]})
+        scene_frames.append({"camera": camera, "primitives": [describe(row) for row in rows]})
         for index, sensor in enumerate(sensors):
             for _ in range(repeats):
                 start = time.perf_counter()
-                frame = sensor.render(colours)
+                frame = sensor.render(sim.scene)
                 frame_s[index].append(time.perf_counter() - start)
             depths[index].append(frame.depth)
     light = -np.asarray(SUN_DIRECTION)

@@ -9,12 +9,20 @@ from typing import List, Optional, Tuple
 PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(PACKAGE_ROOT / "src"))
 
+from turtle_sim_ode.models.resources import ResourcePaths  # noqa: E402
 from turtle_sim_ode.physics.world import PhysicsParams  # noqa: E402
 from turtle_sim_ode.world.simulation import Simulation
 
 TURTLEBOT_URDF = (PACKAGE_ROOT / "urdf" / "turtlebot.urdf").read_text()
+FIXTURES = PACKAGE_ROOT / "test" / "fixtures"
+MESH_PACKAGE = FIXTURES / "tso_mesh_worlds"  # a package of models, worlds and meshes (see its package.xml)
 COMMAND_PERIOD = 0.1  # cmd_vel arrives at 10 Hz
 ODOMETRY_PERIOD = 0.02  # the Kobuki base publishes odometry at 50 Hz
+
+
+def fixture_paths() -> ResourcePaths:
+    """As ros.resource_paths finds them with test/fixtures on ROS_PACKAGE_PATH."""
+    return ResourcePaths({"tso_mesh_worlds": str(MESH_PACKAGE)}, [str(MESH_PACKAGE / "models")], [str(FIXTURES)])
 
 
 def yaw_of(quaternion_xyzw: Tuple[float, float, float, float]) -> float:

@@ -6,14 +6,14 @@ import math
 import numpy as np
 import ode
 import pytest
-from conftest import PACKAGE_ROOT
+from conftest import PACKAGE_ROOT, fixture_paths
 
 from turtle_sim_ode.models.builder import quat_from_rpy
 from turtle_sim_ode.models.sdf import parse_sdf_model, parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.physics.trimesh import MeshGeom
-from turtle_sim_ode.sensors.camera import CameraSensor, scene_colours
+from turtle_sim_ode.sensors.camera import CameraSensor
 from turtle_sim_ode.sensors.config import read_sdf_sensors, read_sensors
 from turtle_sim_ode.sensors.raycast import hit_capsule, hit_cylinder, hit_sphere
 from turtle_sim_ode.world.simulation import Simulation
@@ -61,7 +61,7 @@ def red_dominant(pixel: np.ndarray) -> bool:
 
 def test_a_red_box_ahead_reads_red_and_at_its_distance_in_depth_and_cloud() -> None:
     sim, camera = camera_world()
-    frame = camera.render(scene_colours(sim.models.values()))
+    frame = camera.render(sim.scene)
     height, width = frame.depth.shape
     centre = (height // 2, width // 2)
     assert red_dominant(frame.rgb[centre])
@@ -85,7 +85,7 @@ def test_a_red_box_ahead_reads_red_and_at_its_distance_in_depth_and_cloud() -> N
 def test_the_focal_length_follows_fov_and_width_and_the_cloud_projects_back() -> None:
     sim, camera = camera_world(fov=1.2, width=200, height=100)
     assert camera.focal_length == pytest.approx(200 / (2 * math.tan(0.6)))
-    frame = camera.render(scene_colours(sim.models.values()))
+    frame = camera.render(sim.scene)
     cloud = camera.points(frame)
     for row, column in ((50, 100), (40, 120), (60, 70)):
         x, y, z = cloud[row, column]
@@ -96,7 +96,7 @@ def test_the_focal_length_follows_fov_and_width_and_the_cloud_projects_back() ->
 def test_the_box_edge_falls_where_the_pinhole_puts_it() -> None:
     """The box's left edge (y = +0.5 m at x = 1.5 m) lies at column cx - f * 0.5 / 1.5."""
     sim, camera = camera_world(width=321, height=241)
-    frame = camera.render(scene_colours(sim.models.values()))
+    frame = camera.render(sim.scene)
     row = frame.rgb[120]
     red = [column for column in range(321) if red_dominant(row[column])]
     edge = camera.cx - camera.focal_length * 0.5 / FACE_X
@@ -106,7 +106,7 @@ def test_the_box_edge_falls_where_the_pinhole_puts_it() -> None:
 
 def test_a_camera_inside_its_own_model_sees_past_it() -> None:
     sim, camera = camera_world(lens_z=0.0, cube_z=0.55)  # the lens at the cube's centre
-    frame = camera.render(scene_colours(sim.models.values()))
+    frame = camera.render(sim.scene)
     assert frame.depth[120, 160] == pytest.approx(FACE_X, abs=0.01)
 
 
@@ -198,9 +198,28 @@ def test_the_ray_kernel_is_built_and_used_by_default() -> None:
     assert camera.uses_ray_kernel, "libturtle_sim_ode_rays.so not found: run scripts/build.sh"
 
 
+# Visuals for the agreement test: a box drawn 0.3 m from its collision, a sphere, a mesh (mm, scale 0.001), turned.
+VISUALS = """<sdf version="1.6"><model name="visuals"><static>true</static>
+<link name="boxed"><pose>1.1 0.35 0.35 0.3 0.2 0.5</pose>
+<collision name="c"><geometry><box><size>0.2 0.2 0.2</size></box></geometry></collision>
+<visual name="v"><pose>0 0.3 0 0 0 0.7</pose><geometry><box><size>0.25 0.15 0.3</size></box></geometry>
+<material><script><name>Gazebo/Orange</name></script></material></visual></link>
+<link name="ball"><pose>1.3 -0.35 0.75 0 0 0</pose>
+<visual name="v"><geometry><sphere><radius>0.12</radius></sphere></geometry>
+<material><diffuse>0.2 0.3 0.9 1</diffuse></material></visual></link>
+<link name="plate"><pose>0.7 -0.1 0.7 0 -0.3 0.4</pose>
+<collision name="c"><geometry><sphere><radius>0.05</radius></sphere></geometry></collision>
+<visual name="v"><geometry><mesh><uri>package://tso_mesh_worlds/meshes/plate.stl</uri><scale>0.001 0.001 0.001</scale>
+</mesh></geometry><material><script><name>Gazebo/Purple</name></script></material></visual></link>
+</model></sdf>"""
+
+
 def test_the_c_and_numpy_ray_casters_draw_the_same_image() -> None:
-    """Every shape and a mesh, turned every way, near and far, half out of the picture: C and numpy rays agree."""
+    """Every shape and a mesh, turned every way, near and far, half out of the picture, and visuals (a box beside its
+    collision, a sphere, a mesh): C and numpy rays agree."""
     sim, camera = camera_world(width=96, height=72)
+    sim.resources = fixture_paths()
+    sim.spawn_sdf("visuals", VISUALS)
     space = sim.physics.space
     shapes = [
         ode.GeomBox(space, (0.3, 0.5, 0.2)),
@@ -221,10 +240,9 @@ def test_the_c_and_numpy_ray_casters_draw_the_same_image() -> None:
         angles = rng.uniform(-np.pi, np.pi, 3) if geom is not shapes[5] else (0.0, 0.0, 0.3)
         w, qx, qy, qz = quat_from_rpy(*angles)
         geom.setQuaternion((w, qx, qy, qz))
-    colours = scene_colours(sim.models.values())
-    colours.update({geom: (0.1 * i, 0.9 - 0.1 * i, 0.5) for i, geom in enumerate(shapes)})
     numpy_camera = CameraSensor(sim.physics, sim.models["cam"], camera.config, ray_kernel=False)
-    fast, slow = camera.render(colours), numpy_camera.render(colours)
+    fast, slow = camera.render(sim.scene), numpy_camera.render(sim.scene)
+    assert not sim.scene.take_warnings()
     assert (np.isnan(fast.depth) == np.isnan(slow.depth)).all()
     hit = ~np.isnan(fast.depth)
     assert np.allclose(fast.depth[hit], slow.depth[hit], rtol=1e-5, atol=1e-6)
@@ -238,6 +256,8 @@ def test_the_c_and_numpy_ray_casters_draw_the_same_image() -> None:
     assert np.array_equal(fast_cloud[:, :, 12:], slow_cloud[:, :, 12:])
     drawn = {tuple(pixel) for pixel in fast.rgb.reshape(-1, 3)}
     assert len(drawn) > 8  # shapes, faces and shading, not one flat colour
+    table, meshes = sim.scene.drawables(sim.physics, sim.models["cam"])
+    assert len(meshes) == 2 and len(table) == len(shapes) - 1 + 2 + 1  # the boxed link's collision is not drawn
 
 
 def test_an_sdf_link_sensor_is_a_camera_in_the_link_frame() -> None:
@@ -280,6 +300,6 @@ def test_the_worlds_sun_and_sky_light_the_picture() -> None:
             sky=sim.sky_colour,
             ray_kernel=kernel,
         )
-        frame = camera.render(scene_colours(sim.models.values()))
+        frame = camera.render(sim.scene)
         assert tuple(frame.rgb[0, 16]) == (0, 0, 255)  # the sky
         assert tuple(frame.rgb[23, 16]) == (179, 179, 179)  # Gazebo/Grey ground, the sun straight above: 0.7 lit fully

@@ -16,7 +16,6 @@ from test_camera import camera_world
 
 from turtle_sim_ode.ros import camera_topics, periodic
 from turtle_sim_ode.ros.wire import joined
-from turtle_sim_ode.sensors.camera import scene_colours
 
 
 class FakePublisher:
@@ -48,7 +47,7 @@ def publisher(monkeypatch):
     monkeypatch.setattr(periodic, "PackedPublisher", FakePublisher)  # camera topics are advertised there
     monkeypatch.setattr(camera_topics, "release", lambda handle: None)
     sim, camera = camera_world(width=64, height=48)
-    return camera_topics.CameraPublisher(camera, lambda: scene_colours(sim.models.values()), "robot"), camera
+    return camera_topics.CameraPublisher(camera, sim.scene, "robot"), camera
 
 
 def test_topics_follow_robot_namespace_and_camera_name(publisher) -> None:
@@ -126,7 +125,7 @@ def test_a_plain_camera_has_image_and_info_only_in_its_format(monkeypatch) -> No
     monkeypatch.setattr(periodic, "PackedPublisher", FakePublisher)  # camera topics are advertised there
     sim, camera = camera_world(kind="camera", plugin="libgazebo_ros_camera.so", width=40, height=30)
     camera.config = dataclasses.replace(camera.config, image_format="L8")
-    camera_publisher = camera_topics.CameraPublisher(camera, lambda: scene_colours(sim.models.values()), "")
+    camera_publisher = camera_topics.CameraPublisher(camera, sim.scene, "")
     assert set(FakePublisher.made) == {"cam/image_raw", "cam/camera_info"}
     FakePublisher.made["cam/image_raw"].connections = 1
     camera_publisher.publish(rospy.Time(1, 0), 1.0)

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
+from conftest import FIXTURES, MESH_PACKAGE, TURTLEBOT_URDF, fixture_paths
 from test_camera import CAMERA_URDF
 
 from test_sensors import LASER_URDF, beam, laser_config
@@ -26,11 +26,10 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import Mesh, parse_urdf
 from turtle_sim_ode.physics.trimesh import MeshGeom, quickstep_w
 from turtle_sim_ode.physics.world import seed_ode_random
-from turtle_sim_ode.sensors.camera import SKY_COLOR, CameraSensor, scene_colours
+from turtle_sim_ode.sensors.camera import SKY_COLOR, CameraSensor
 from turtle_sim_ode.sensors.laser import LaserScanner
 from turtle_sim_ode.world.simulation import Simulation
 
-FIXTURES = PACKAGE_ROOT / "test" / "fixtures"
 sys.path.insert(0, str(FIXTURES))
 from make_meshes import (  # noqa: E402
     HALF_INSIDE,
@@ -41,15 +40,9 @@ from make_meshes import (  # noqa: E402
     obj,
 )
 
-PACKAGE = FIXTURES / "tso_mesh_worlds"
-WORLD = (PACKAGE / "worlds" / "mesh_room.world").read_text()
+WORLD = (MESH_PACKAGE / "worlds" / "mesh_room.world").read_text()
 ROOM_X = 0.5  # the world's <include><pose> of the room
 RANGE_TOLERANCE = 0.01
-
-
-def fixture_paths() -> ResourcePaths:
-    """As ros.resource_paths finds them with test/fixtures on ROS_PACKAGE_PATH."""
-    return ResourcePaths({"tso_mesh_worlds": str(PACKAGE)}, [str(PACKAGE / "models")], [str(FIXTURES)])
 
 
 def room_sim() -> Simulation:
@@ -82,7 +75,7 @@ def test_include_name_static_and_pose_override_the_models_own():
     )
     models, left = resolve_includes(parse_sdf_world(world), fixture_paths())
     assert [m.name for m in models] == ["room_b"] and left == []
-    assert models[0].pose.xyz == (ROOM_X, 0.0, 0.0) and models[0].base == str(PACKAGE / "models" / "tso_mesh_room")
+    assert models[0].pose.xyz == (ROOM_X, 0.0, 0.0) and models[0].base == str(MESH_PACKAGE / "models" / "tso_mesh_room")
 
 
 @pytest.mark.parametrize(
@@ -145,7 +138,7 @@ def test_a_camera_inside_mesh_walls_sees_them_where_the_mesh_puts_them(kernel):
     )
     sim.spawn_urdf("cam", urdf, (0.7, 0.1, 0.05, 0.0, 0.0, 0.0))
     camera = CameraSensor(sim.physics, sim.models["cam"], sim.plugins["cam"].cameras[0], ray_kernel=kernel)
-    frame = camera.render(scene_colours(sim.models.values()))
+    frame = camera.render(sim.scene)
     (x, _, _), _ = sim.models["cam"].link_pose("base")
     # The centre row and column sit between pixels: the four pixels about the centre look at the east wall.
     centre = frame.depth[23:25, 31:33]

@@ -1,4 +1,4 @@
-"""Colours of links for the cameras: URDF ``<visual><material>`` (inline ``<color rgba>`` or a named robot-level
+"""Colours of visuals for the cameras: URDF ``<visual><material>`` (inline ``<color rgba>`` or a named robot-level
 material), Gazebo's material scripts by name (``Gazebo/Red`` ...) from ``<gazebo reference><material>`` or SDF
 ``<material><script><name>``, and SDF ``<material>`` diffuse / ambient colours."""
 from __future__ import annotations
@@ -68,32 +68,23 @@ def urdf_named_materials(robot: Element) -> Dict[str, RGB]:
     return found
 
 
-def urdf_link_color(link: Element, named: Dict[str, RGB]) -> Optional[RGB]:
-    """The first ``<visual><material>`` colour of a URDF link: inline rgba, else the named material's."""
-    for visual in link.findall("visual"):
-        material = visual.find("material")
-        if material is None:
-            continue
-        color_element = material.find("color")
-        color = rgb_of(color_element.get("rgba")) if color_element is not None else None
-        if color is None:
-            color = named.get(material.get("name", ""))
-        if color is not None:
-            return color
-    return None
+def urdf_visual_color(visual: Element, named: Dict[str, RGB]) -> Optional[RGB]:
+    """A URDF ``<visual>``'s ``<material>`` colour: inline rgba, else the named robot-level material's."""
+    material = visual.find("material")
+    if material is None:
+        return None
+    color_element = material.find("color")
+    color = rgb_of(color_element.get("rgba")) if color_element is not None else None
+    return color if color is not None else named.get(material.get("name", ""))
 
 
-def sdf_link_color(link: Element) -> Optional[RGB]:
-    """The first ``<visual><material>`` colour of an SDF link: diffuse, ambient, else a Gazebo script name."""
-    for visual in link.findall("visual"):
-        material = visual.find("material")
-        if material is None:
-            continue
-        for tag in ("diffuse", "ambient"):
-            color = rgb_of(material.findtext(tag))
-            if color is not None:
-                return color
-        color = gazebo_material(material.findtext("script/name"))
+def sdf_visual_color(visual: Element) -> Optional[RGB]:
+    """An SDF ``<visual>``'s ``<material>`` colour: diffuse, ambient, else a Gazebo script name."""
+    material = visual.find("material")
+    if material is None:
+        return None
+    for tag in ("diffuse", "ambient"):
+        color = rgb_of(material.findtext(tag))
         if color is not None:
             return color
-    return None
+    return gazebo_material(material.findtext("script/name"))

@@ -1,5 +1,6 @@
-"""Collision meshes: STL (binary and ASCII, read with numpy-stl), Wavefront OBJ and Collada (.dae) triangles, from
-the bytes models.resources read; and ``load_meshes``, which fills a parsed model's <mesh> collisions with them.
+"""Collision and visual meshes: STL (binary and ASCII, read with numpy-stl), Wavefront OBJ and Collada (.dae)
+triangles, from the bytes models.resources read; ``load_meshes``, which fills a parsed model's <mesh> collisions with
+them, and ``mesh_file`` and ``scaled_mesh``, which the cameras read visual meshes with.
 
 numpy-stl (Debian's python3-stl) reads a 20,000-triangle binary STL in about 1 ms. pyassimp (Debian's
 python3-pyassimp 5.2.5) would read all three formats, but crashes the process (SIGSEGV) on any STL on Debian 12, and
@@ -229,8 +230,9 @@ def read_mesh(data: bytes, name: str) -> Triangles:
     return triangles
 
 
-def mesh_arrays(triangles: Triangles, scale: Sequence[float], what: str) -> Tuple[Tuple, Tuple]:
-    """(vertices, faces) for ode.TriMeshData: shared vertices, scaled; ModelError beyond MAX_LENGTH."""
+def scaled_mesh(triangles: Triangles, scale: Sequence[float], what: str) -> Tuple[numpy.ndarray, numpy.ndarray]:
+    """(vertices (N, 3) float64, faces (M, 3) int64): shared vertices, scaled, degenerate triangles dropped;
+    ModelError beyond MAX_LENGTH or if no triangle is left."""
     scaled = triangles.reshape(-1, 3) * numpy.array(scale, dtype=numpy.float64)
     if numpy.abs(scaled).max() > MAX_LENGTH:
         raise ModelError(f"{what}: vertices beyond {MAX_LENGTH:g} m with scale {tuple(scale)}")
@@ -239,7 +241,27 @@ def mesh_arrays(triangles: Triangles, scale: Sequence[float], what: str) -> Tupl
     faces = faces[(faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])]
     if len(faces) == 0:
         raise ModelError(f"{what}: every triangle is degenerate at scale {tuple(scale)}")
+    return vertices, faces
+
+
+def mesh_arrays(triangles: Triangles, scale: Sequence[float], what: str) -> Tuple[Tuple, Tuple]:
+    """scaled_mesh as tuples, for ode.TriMeshData."""
+    vertices, faces = scaled_mesh(triangles, scale, what)
     return tuple(map(tuple, vertices.tolist())), tuple(map(tuple, faces.tolist()))
+
+
+def mesh_file(
+    paths: Optional[ResourcePaths], mesh: Mesh, base: Optional[str], what: str, cache: Dict[str, Triangles]
+) -> Triangles:
+    """The triangles of ``mesh``'s file, read through ``paths`` (relative URIs against ``base``) unless ``cache``
+    (resolved path -> triangles) has them; ResourceError or ModelError naming ``what`` if it cannot be read."""
+    if paths is None:
+        raise ResourceError(f"{what}: not read, no ROS package path or model path to read it from")
+    path = paths.resolve(mesh.uri, base)
+    if path not in cache:
+        _, data = paths.read(mesh.uri, base)
+        cache[path] = read_mesh(data, path)
+    return cache[path]
 
 
 def load_meshes(robot: RobotModel, paths: Optional[ResourcePaths], base: Optional[str] = None) -> None:
@@ -253,13 +275,8 @@ def load_meshes(robot: RobotModel, paths: Optional[ResourcePaths], base: Optiona
             if not isinstance(geometry, Mesh) or geometry.vertices is not None:
                 continue
             what = f"link '{link.name}' collision '{collision.name}' mesh '{geometry.uri}'"
-            if paths is None:
-                raise ResourceError(f"{what}: not read, no ROS package path or model path to read it from")
-            path = paths.resolve(geometry.uri, base)
-            if path not in cache:
-                _, data = paths.read(geometry.uri, base)
-                cache[path] = read_mesh(data, path)
-            vertices, faces = mesh_arrays(cache[path], geometry.scale, what)
+            triangles = mesh_file(paths, geometry, base, what, cache)
+            vertices, faces = mesh_arrays(triangles, geometry.scale, what)
             link.collisions[index] = replace(collision, geometry=replace(geometry, vertices=vertices, faces=faces))
 
 

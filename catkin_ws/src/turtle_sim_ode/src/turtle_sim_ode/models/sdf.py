@@ -22,7 +22,7 @@ from turtle_sim_ode.models.builder import (
     quat_rotate,
     rpy_of,
 )
-from turtle_sim_ode.models.materials import RGB, rgb_of, sdf_link_color
+from turtle_sim_ode.models.materials import RGB, rgb_of, sdf_visual_color
 from turtle_sim_ode.models.nested import flatten_nested_models, read_pose
 from turtle_sim_ode.models.text import (
     ModelError,
@@ -51,6 +51,7 @@ from turtle_sim_ode.models.urdf import (
     SensorElement,
     Sphere,
     Vec3,
+    Visual,
     _bounded,
     _check_mass,
     _find_root,
@@ -58,6 +59,7 @@ from turtle_sim_ode.models.urdf import (
     _offset,
     _vec3,
     check_size,
+    drawn_shape,
     mesh_geometry,
     read_surface_value,
 )
@@ -89,6 +91,8 @@ SURFACE_PATHS = {
     "slip1": "friction/ode/slip1",
     "slip2": "friction/ode/slip2",
 }
+# The <geometry> shapes of an SDF visual the cameras draw (others are skipped with a warning).
+VISUAL_SHAPES = ("box", "cylinder", "sphere", "plane", "mesh")
 # <world> children that change nothing the simulator models.
 SILENT_WORLD_TAGS = ("light", "scene", "gui", "atmosphere", "spherical_coordinates", "magnetic_field", "wind", "audio")
 # <gravity> when a world has none: SDF's default (sdformat's world.sdf).
@@ -305,9 +309,15 @@ def _parse_geometry(
         )
     if shape.tag == "mesh":
         if shape.find("submesh") is not None:
-            warnings.append(f"{what}: <mesh><submesh> is not supported; the whole mesh collides")
+            warnings.append(f"{what}: <mesh><submesh> is not supported; the whole mesh is used")
         return mesh_geometry(child_text(shape, "uri"), child_text(shape, "scale"), f"{what} <mesh>"), identity
     raise ModelError(f"{what}: unsupported geometry")
+
+
+def _placed(element: Element, what: str, static: bool, warnings: List[str]) -> Tuple[Pose, Geometry]:
+    """A <collision>'s or <visual>'s pose in its link and its shape."""
+    geometry, offset = _parse_geometry(element.find("geometry"), what, static, warnings)
+    return _as_pose(compose(pose_transform(_pose(element, what)), offset)), geometry
 
 
 # <surface> entries that are read (SURFACE_PATHS) or that hold only their parents' defaults.
@@ -346,15 +356,18 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
         if not static and _bool(element, flag, what, normal) != normal:
             model.warnings.append(f"{what}: <{flag}> is not supported, ignored")
     link = Link(name, None if static else _parse_inertial(element.find("inertial"), name, model.warnings))
-    link.color = sdf_link_color(element)
+    for index, visual in enumerate(element.findall("visual")):
+        visual_name = visual.get("name") or f"{name}_visual_{index}"
+        where = f"{what} visual '{visual_name}'"
+        if drawn_shape(visual, where, VISUAL_SHAPES, model.warnings):
+            # A plane is drawn as the box it collides as, on moving links too.
+            origin, geometry = _placed(visual, where, True, model.warnings)
+            link.visuals.append(Visual(visual_name, origin, geometry, sdf_visual_color(visual)))
     surface: Dict[str, float] = {}
     for index, collision in enumerate(element.findall("collision")):
         collision_name = collision.get("name") or f"{name}_collision_{index}"
         where = f"{what} collision '{collision_name}'"
-        geometry, offset = _parse_geometry(collision.find("geometry"), where, static, model.warnings)
-        link.collisions.append(
-            Collision(collision_name, _as_pose(compose(pose_transform(_pose(collision, where)), offset)), geometry)
-        )
+        link.collisions.append(Collision(collision_name, *_placed(collision, where, static, model.warnings)))
         values = _parse_surface(collision.find("surface"), where, model.warnings)
         if any(surface.get(key, value) != value for key, value in values.items()):
             model.warnings.append(

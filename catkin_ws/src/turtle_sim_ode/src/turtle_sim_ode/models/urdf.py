@@ -1,11 +1,11 @@
 """Parse and validate a URDF string (no xacro, no file access) into plain dataclasses."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Dict, List, Optional, Tuple, Union
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.materials import RGB, gazebo_material, urdf_link_color, urdf_named_materials
+from turtle_sim_ode.models.materials import RGB, gazebo_material, urdf_named_materials, urdf_visual_color
 from turtle_sim_ode.models.text import ModelError, parse_xml, read_number, required_attribute
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.sanity import MAX_INERTIA, MAX_LENGTH, MAX_MASS, MIN_MASS
@@ -18,6 +18,7 @@ Vec3 = Tuple[float, float, float]
 MAX_LINKS = 1000
 MAX_JOINTS = 1000
 MAX_COLLISIONS = 1000
+MAX_VISUALS = 1000  # each is drawn by every camera, every frame
 # Magnitude limits: lengths (offsets, sizes) in m, masses in kg, inertia entries in kg m^2. Beyond them ODE's
 # collision grid or integrator overflows and aborts the whole process (offsets of 1e12 m, inertias of 1e300).
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
@@ -89,6 +90,8 @@ class Mesh:
 
 
 Geometry = Union[Box, Cylinder, Sphere, Mesh]
+# The <geometry> shapes a URDF visual may have that the cameras draw (others are skipped with a warning).
+VISUAL_SHAPES = ("box", "cylinder", "sphere", "mesh")
 
 
 @dataclass(frozen=True)
@@ -98,12 +101,29 @@ class Collision:
     geometry: Geometry
 
 
+@dataclass(frozen=True)
+class Visual:
+    """What the cameras draw of a link (Gazebo's cameras see visuals, not collisions): ``origin`` in the link frame,
+    ``color`` from its own material (None: Gazebo's default grey). A mesh's file is read by the cameras."""
+
+    name: str
+    origin: Pose
+    geometry: Geometry
+    color: Optional[RGB] = None
+
+
 @dataclass
 class Link:
     name: str
     inertial: Optional[Inertial] = None
     collisions: List[Collision] = field(default_factory=list)
-    color: Optional[RGB] = None  # from its visual's material (None: Gazebo's default grey), for the cameras
+    visuals: List[Visual] = field(default_factory=list)
+
+    @property
+    def color(self) -> Optional[RGB]:
+        """The first visual colour (None: Gazebo's default grey): the cameras draw the link's collisions in it where
+        its visuals cannot be drawn."""
+        return next((visual.color for visual in self.visuals if visual.color is not None), None)
 
 
 @dataclass(frozen=True)
@@ -194,6 +214,8 @@ class RobotModel:
     root_pose: Pose = Pose()
     # SDF <static>: collision geoms fixed in the world, no bodies.
     static: bool = False
+    # The folder of the file the model came from: its relative mesh names are read against it.
+    base: Optional[str] = None
 
     def plugin(self, filename: str) -> Optional[GazeboPlugin]:
         """The first plugin loaded from ``filename`` (e.g. 'libgazebo_ros_kobuki.so')."""
@@ -318,11 +340,32 @@ def _parse_geometry(element: Optional[Element], what: str, warnings: List[str]) 
     raise ModelError(f"{what}: unsupported geometry <{shape.tag}>")
 
 
+def drawn_shape(visual: Element, what: str, shapes: Tuple[str, ...], warnings: List[str]) -> bool:
+    """Whether a <visual>'s shape is one the cameras draw (``shapes``); a warning naming it if not. A visual without
+    a shape is for its geometry parser to refuse."""
+    geometry = visual.find("geometry")
+    shape = None if geometry is None else next(iter(geometry), None)
+    if shape is None or shape.tag in shapes:
+        return True
+    warnings.append(f"{what}: <{shape.tag}> is not drawn by the cameras, skipped")
+    return False
+
+
 def _parse_link(element: Element, warnings: List[str], materials: Dict[str, RGB]) -> Link:
     name = required_attribute(element, "name", "<link>")
     inertial = element.find("inertial")
     link = Link(name, _parse_inertial(inertial, name) if inertial is not None else None)
-    link.color = urdf_link_color(element, materials)
+    for index, visual in enumerate(element.findall("visual")):
+        what = f"link '{name}' visual {visual.get('name') or index}"
+        if drawn_shape(visual, what, VISUAL_SHAPES, warnings):
+            link.visuals.append(
+                Visual(
+                    visual.get("name") or f"{name}_visual_{index}",
+                    _pose(visual.find("origin"), what),
+                    _parse_geometry(visual.find("geometry"), what, warnings),
+                    urdf_visual_color(visual, materials),
+                )
+            )
     for index, collision in enumerate(element.findall("collision")):
         what = f"link '{name}' collision {collision.get('name') or index}"
         link.collisions.append(
@@ -410,8 +453,9 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
             )
         return
     color = gazebo_material(element.findtext("material"))
-    if color is not None and reference in model.links:
-        model.links[reference].color = color  # Gazebo shows its material over the URDF's colour
+    if color is not None and reference in model.links:  # Gazebo shows its material over the URDF's colours
+        link = model.links[reference]
+        link.visuals = [replace(visual, color=color) for visual in link.visuals]
     values = {}
     for child in element:
         if child.tag in SURFACE_TAGS:
@@ -431,13 +475,16 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
 
 # --- validation -----------------------------------------------------------------------
 def check_size(what: str, link_elements: List[Element], joint_elements: List[Element]) -> None:
-    """ModelError naming the limits if a model has more links, joints or collisions than allowed."""
+    """ModelError naming the limits if a model has more links, joints, collisions or visuals than allowed."""
     collisions = sum(len(link.findall("collision")) for link in link_elements)
     if len(link_elements) > MAX_LINKS or len(joint_elements) > MAX_JOINTS or collisions > MAX_COLLISIONS:
         raise ModelError(
             f"{what} too large: {len(link_elements)} links, {len(joint_elements)} joints, {collisions} collisions "
             f"(limits {MAX_LINKS}, {MAX_JOINTS}, {MAX_COLLISIONS})"
         )
+    visuals = sum(len(link.findall("visual")) for link in link_elements)
+    if visuals > MAX_VISUALS:
+        raise ModelError(f"{what} too large: {visuals} visuals (limit {MAX_VISUALS})")
 
 
 def _find_root(links: Dict[str, Link], joints: Dict[str, Joint]) -> str:

@@ -16,6 +16,7 @@ from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, plugin_topic
 from turtle_sim_ode.ros.wire import Packed, release
 from turtle_sim_ode.sensors.camera import CLOUD_POINT_STEP, CameraSensor, Frame
 from turtle_sim_ode.sensors.config import CameraConfig
+from turtle_sim_ode.sensors.scene import Scene
 
 # sensor_msgs/PointCloud2 as gazebo_ros_openni_kinect lays it out (PointCloud2Modifier "xyz", "rgb"): x, y, z
 # float32, 4 bytes of padding, rgb (a float32's bytes: b, g, r, 0 as PCL and rviz read them), padding to 32.
@@ -96,12 +97,12 @@ def colour_image(rgb: np.ndarray, encoding: str) -> np.ndarray:
 class CameraPublisher(Periodic):
     """A camera or depth camera plugin's topics, under ``robotNamespace``/``cameraName`` as gazebo_ros has them."""
 
-    def __init__(self, sensor: CameraSensor, colours: Callable[[], Dict], namespace: str) -> None:
-        """``colours``: each geom's colour now (sensors.camera.scene_colours of the world's models)."""
+    def __init__(self, sensor: CameraSensor, scene: Scene, namespace: str) -> None:
+        """``scene``: what the cameras see of the world's models (the simulation's)."""
         config = sensor.config
         super().__init__(1.0 / config.update_rate)
         self._sensor = sensor
-        self._colours = colours
+        self._scene = scene
         prefix = topic_prefix(namespace or config.robot_namespace) + topic_prefix(config.camera_name)
 
         def topic(name: str) -> str:
@@ -132,8 +133,10 @@ class CameraPublisher(Periodic):
         image, depth, points = (self._heard(c) for c in (self._image, self._depth, self._points))
         if not (image or depth or points):
             return
-        frame: Frame = self._sensor.render(self._colours())
+        frame: Frame = self._sensor.render(self._scene)
         self.rendered += 1
+        for warning in self._scene.take_warnings():
+            rospy.logwarn("camera %s: %s", self._sensor.config.camera_name, warning)
         if image:
             rgb = colour_image(frame.rgb, self._sensor.config.encoding)
             self._image[0].publish(self._image[1], secs, nsecs, rgb)

@@ -42,7 +42,7 @@ from turtle_sim_ode.ros.wire import (
     TransformPacker,
     release,
 )
-from turtle_sim_ode.sensors.camera import CameraSensor, scene_colours
+from turtle_sim_ode.sensors.camera import CameraSensor
 from turtle_sim_ode.sensors.config import ContactConfig, ImuConfig
 from turtle_sim_ode.sensors.imu import ImuSensor
 from turtle_sim_ode.sensors.kobuki import BumperSensor, CliffSensor
@@ -587,4 +587,4 @@ def _add_interfaces(
             interfaces.append(ContactsPublisher(sim, model, config, namespace))
         for config in plugins.cameras:
             sensor = CameraSensor(sim.physics, model, config, sun_direction=sim.light_direction, sky=sim.sky_colour)
-            interfaces.append(CameraPublisher(sensor, lambda: scene_colours(sim.models.values()), namespace))
+            interfaces.append(CameraPublisher(sensor, sim.scene, namespace))

@@ -1,7 +1,7 @@
 """A camera on a model's link, rendered on the CPU by casting one ray per pixel (in C, see sensors.ray_kernel, or
-with numpy, see sensors.raycast) into the collision geometry (primitives and meshes) of every other model and the
-ground plane: a shaded colour image, a depth image (metres along the optical axis, as Gazebo's depth cameras give
-it) and an organised point cloud in the optical frame.
+with numpy, see sensors.raycast) into what sensors.scene draws of every other model (the links' visuals, or their
+collisions where they have none) and the ground plane: a shaded colour image, a depth image (metres along the
+optical axis, as Gazebo's depth cameras give it) and an organised point cloud in the optical frame.
 
 The optical frame is gazebo_ros's: z along the sensor's x (forward), x to the image's right (the sensor's -y),
 y down (the sensor's -z). A pixel (i, j) looks through its centre: x/z = (i - cx) / f, y/z = (j - cy) / f with
@@ -11,20 +11,18 @@ from __future__ import annotations
 
 import random
 from dataclasses import dataclass
-from typing import Dict, Iterable, Optional, Tuple
+from typing import Optional, Tuple
 
 import numpy as np
-import ode
 
 from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, quat_from_rpy, quat_matrix
-from turtle_sim_ode.models.materials import DEFAULT_COLOR, GAZEBO_MATERIALS, RGB
+from turtle_sim_ode.models.materials import GAZEBO_MATERIALS, RGB
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.config import CameraConfig
-from turtle_sim_ode.sensors.ray_kernel import RayCaster
+from turtle_sim_ode.sensors.ray_kernel import RayCaster, primitive_row
 from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
-from turtle_sim_ode.physics.trimesh import MeshGeom
-from turtle_sim_ode.sensors.raycast import hit_plane, hit_triangle, primitive
-from turtle_sim_ode.sensors.rays import world_geoms
+from turtle_sim_ode.sensors.raycast import Primitive, hit_plane, hit_triangle, mesh_triangles
+from turtle_sim_ode.sensors.scene import Scene
 
 # Gazebo's defaults: the scene's background, the ground_plane model's material, the sun model's direction.
 SKY_COLOR: RGB = (0.7, 0.7, 0.7)
@@ -34,25 +32,6 @@ AMBIENT = 0.4  # share of a surface's colour lit from everywhere; the rest from 
 CLOUD_POINT_STEP = 32  # bytes a point: x, y, z, padding, rgb, padding (PointCloud2Modifier "xyz", "rgb")
 # Optical frame from sensor frame (rows: optical x, y, z in sensor axes).
 OPTICAL_FROM_SENSOR = np.array([[0.0, -1.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]])
-
-
-def mesh_triangles(mesh: MeshGeom) -> np.ndarray:
-    """A mesh's triangles' corners in the world, (M, 3, 3)."""
-    rotation = np.array(mesh.getRotation()).reshape(3, 3)
-    world = mesh.vertices @ rotation.T + np.array(mesh.getPosition())
-    return world[mesh.faces]
-
-
-def scene_colours(models: Iterable[BuiltModel]) -> Dict[ode.GeomObject, RGB]:
-    """Each collision geom's colour: its link's (RobotModel links' ``color``), else Gazebo's default grey."""
-    colours: Dict[ode.GeomObject, RGB] = {}
-    for model in models:
-        links = model.robot.links
-        for link, geoms in model.geoms.items():
-            colour = links[link].color if link in links and links[link].color is not None else DEFAULT_COLOR
-            for geom in geoms:
-                colours[geom] = colour
-    return colours
 
 
 @dataclass
@@ -66,7 +45,8 @@ class Frame:
 
 
 class CameraSensor:
-    """Renders ``config``'s camera on ``link`` of ``model``: every geom but the model's own, and the ground."""
+    """Renders ``config``'s camera on ``link`` of ``model``: every model but its own (see sensors.scene), and the
+    ground."""
 
     def __init__(
         self,
@@ -146,23 +126,18 @@ class CameraSensor:
             return None
         return i0, i1, j0, j1
 
-    def render(self, colours: Dict[ode.GeomObject, RGB]) -> Frame:
-        """Cast every pixel's ray; ``colours`` gives each geom's colour (see scene_colours)."""
+    def render(self, scene: Scene) -> Frame:
+        """Cast every pixel's ray at what ``scene`` draws of the world (the camera's own model aside) and the ground."""
         config = self.config
         origin, rotation = self.optical_pose()
+        table, meshes = scene.drawables(self.physics, self.model)
+        ground = self.physics.ground
         if self._caster is not None:
-            ground = self.physics.ground
             # Near to far, the ground last: a farther surface then fails the depth test before it is shaded.
-            ox, oy, oz = origin
-            near_first = sorted(
-                world_geoms(self.physics, self.model),
-                key=lambda g: sum((a - b) ** 2 for a, b in zip(g.getPosition(), (ox, oy, oz))),
-            )
-            geoms = near_first + [ground]
+            near_first = table[np.argsort(((table[:, 1:4] - origin) ** 2).sum(axis=1), kind="stable")]
             _, depth, rgb = self._caster.render(
-                geoms,
-                {**colours, ground: GROUND_COLOR},
-                DEFAULT_COLOR,
+                np.vstack((near_first, primitive_row(ground, GROUND_COLOR))),
+                meshes,
                 origin,
                 rotation,
                 config.near,
@@ -194,32 +169,27 @@ class CameraSensor:
             lit = np.clip(normals.reshape(region.shape + (3,))[nearer] @ self._light, 0.0, 1.0)
             shade[j0:j1, i0:i1][nearer] = np.outer(AMBIENT + (1.0 - AMBIENT) * lit, colour)
 
-        full = (0, width, 0, height)
-        ground = self.physics.ground
         normal, offset = ground.getParams()
         t, normals = hit_plane(origin, dirs.reshape(-1, 3), np.array(normal, dtype=float), offset, t_min)
-        paint(t, normals, GROUND_COLOR, full)
-        for geom in world_geoms(self.physics, self.model):
-            if isinstance(geom, MeshGeom):
-                for corners in mesh_triangles(geom):
-                    centre = corners.mean(axis=0)
-                    box = self._pixel_box(
-                        (centre - origin) @ rotation, float(np.linalg.norm(corners - centre, axis=1).max())
-                    )
-                    if box is not None:
-                        i0, i1, j0, j1 = box
-                        t, normals = hit_triangle(origin, dirs[j0:j1, i0:i1].reshape(-1, 3), corners, t_min)
-                        paint(t, normals, colours.get(geom, DEFAULT_COLOR), box)
-                continue
-            shape = primitive(geom)
-            if shape is None:
-                continue
+        paint(t, normals, GROUND_COLOR, (0, width, 0, height))
+        for pose, vertices, faces in meshes:
+            colour = tuple(pose[12:15])
+            for corners in mesh_triangles(pose, vertices, faces):
+                centre = corners.mean(axis=0)
+                box = self._pixel_box(
+                    (centre - origin) @ rotation, float(np.linalg.norm(corners - centre, axis=1).max())
+                )
+                if box is not None:
+                    i0, i1, j0, j1 = box
+                    t, normals = hit_triangle(origin, dirs[j0:j1, i0:i1].reshape(-1, 3), corners, t_min)
+                    paint(t, normals, colour, box)
+        for row in table:
+            shape = Primitive(row)
             box = self._pixel_box((shape.position - origin) @ rotation, shape.radius)
-            if box is None:
-                continue
-            i0, i1, j0, j1 = box
-            t, normals = shape.hit(origin, dirs[j0:j1, i0:i1].reshape(-1, 3), t_min)
-            paint(t, normals, colours.get(geom, DEFAULT_COLOR), box)
+            if box is not None:
+                i0, i1, j0, j1 = box
+                t, normals = shape.hit(origin, dirs[j0:j1, i0:i1].reshape(-1, 3), t_min)
+                paint(t, normals, shape.colour, box)
         depth = distance * self._depth_per_distance
         missed = ~(depth <= config.far)
         shade[missed] = self._sky

@@ -6,13 +6,13 @@ from __future__ import annotations
 import ctypes
 import functools
 import os
-from typing import Dict, Iterable, Optional, Tuple
+from typing import Optional, Sequence, Tuple
 
 import numpy as np
 import ode
 
 from turtle_sim_ode.physics.contact_kernel import find_library
-from turtle_sim_ode.physics.trimesh import MeshGeom
+from turtle_sim_ode.models.urdf import Box, Cylinder, Geometry, Sphere
 
 LIBRARY = "libturtle_sim_ode_rays.so"
 STRIDE = 20  # doubles per primitive row (see src/ray_kernel.c)
@@ -38,30 +38,52 @@ def library() -> Optional[ctypes.CDLL]:
     return lib
 
 
-def primitive_row(geom: ode.GeomObject, colour: RGB) -> Optional[np.ndarray]:
-    """The geom as a row of the C table, None for shapes that are not primitives (trimeshes: see Mesh; rays)."""
+def shape_row(
+    kind: int, sizes: Sequence[float], position: Sequence[float], rotation: Sequence[float], colour: RGB
+) -> np.ndarray:
+    """A row of the C table: shape ``kind`` (BOX: half extents; SPHERE: radius; CYLINDER, CAPSULE: radius, length
+    along z) at ``position``, ``rotation`` (world from shape, 9 numbers row-major), with its bounding radius."""
     row = np.zeros(STRIDE)
+    row[0], row[1:4], row[4:13], row[16:19] = kind, position, rotation, colour
+    row[13 : 13 + len(sizes)] = sizes
+    if kind == BOX:
+        row[19] = np.linalg.norm(sizes)
+    elif kind == SPHERE:
+        row[19] = sizes[0]
+    else:
+        radius, length = sizes
+        row[19] = np.hypot(radius, length / 2) + (radius if kind == CAPSULE else 0.0)
+    return row
+
+
+def primitive_row(geom: ode.GeomObject, colour: RGB) -> Optional[np.ndarray]:
+    """A collision geom as a row of the C table, None for shapes that are not primitives (trimeshes: see Mesh;
+    rays)."""
     if isinstance(geom, ode.GeomPlane):
         normal, offset = geom.getParams()
-        row[0], row[4:7], row[13] = PLANE, normal, offset
-        row[16:19] = colour
+        row = np.zeros(STRIDE)
+        row[0], row[4:7], row[13], row[16:19] = PLANE, normal, offset, colour
         return row
-    row[1:4] = geom.getPosition()
-    row[4:13] = geom.getRotation()
     if isinstance(geom, ode.GeomBox):
-        half = np.array(geom.getLengths()) / 2
-        row[0], row[13:16], row[19] = BOX, half, np.linalg.norm(half)
+        kind, sizes = BOX, np.array(geom.getLengths()) / 2
     elif isinstance(geom, ode.GeomSphere):
-        row[0], row[13], row[19] = SPHERE, geom.getRadius(), geom.getRadius()
+        kind, sizes = SPHERE, (geom.getRadius(),)
     elif isinstance(geom, (ode.GeomCylinder, ode.GeomCapsule)):
-        radius, length = geom.getParams()
-        capsule = isinstance(geom, ode.GeomCapsule)
-        row[0], row[13], row[14] = CAPSULE if capsule else CYLINDER, radius, length
-        row[19] = np.hypot(radius, length / 2) + (radius if capsule else 0.0)
+        kind, sizes = CAPSULE if isinstance(geom, ode.GeomCapsule) else CYLINDER, geom.getParams()
     else:
         return None
-    row[16:19] = colour
-    return row
+    return shape_row(kind, sizes, geom.getPosition(), geom.getRotation(), colour)
+
+
+def visual_row(geometry: Geometry, position: Sequence[float], rotation: Sequence[float], colour: RGB) -> np.ndarray:
+    """A box, sphere or cylinder visual at ``position``, ``rotation`` (as shape_row's) as a row of the C table."""
+    if isinstance(geometry, Box):
+        return shape_row(BOX, np.array(geometry.size) / 2, position, rotation, colour)
+    if isinstance(geometry, Sphere):
+        return shape_row(SPHERE, (geometry.radius,), position, rotation, colour)
+    if isinstance(geometry, Cylinder):
+        return shape_row(CYLINDER, (geometry.radius, geometry.length), position, rotation, colour)
+    raise TypeError(f"no row for {type(geometry).__name__} (meshes: see Mesh)")
 
 
 class Mesh(ctypes.Structure):
@@ -75,9 +97,13 @@ class Mesh(ctypes.Structure):
     ]
 
 
-def mesh_pose(geom: MeshGeom, colour: RGB) -> np.ndarray:
-    """A mesh's row for Mesh.pose: position, rotation (world from mesh, row-major), colour."""
-    return np.concatenate((geom.getPosition(), geom.getRotation(), colour)).astype(np.float64)
+def mesh_pose(position: Sequence[float], rotation: Sequence[float], colour: RGB) -> np.ndarray:
+    """A mesh's row for Mesh.pose: position, rotation (world from mesh, 9 numbers row-major), colour."""
+    return np.concatenate((position, rotation, colour)).astype(np.float64)
+
+
+# What tso_render draws of a mesh: Mesh.pose (mesh_pose), vertices (N, 3) float64, faces (M, 3) uint32.
+MeshItem = Tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
 def _pointer(array: np.ndarray, kind: type) -> ctypes._Pointer:
@@ -101,9 +127,8 @@ class RayCaster:
 
     def render(
         self,
-        geoms: Iterable[ode.GeomObject],
-        colours: Dict[ode.GeomObject, RGB],
-        default: RGB,
+        table: np.ndarray,
+        meshes: Sequence[MeshItem],
         origin: np.ndarray,
         rotation: np.ndarray,
         near: float,
@@ -113,20 +138,21 @@ class RayCaster:
         ambient: float,
         sky: RGB,
     ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-        geoms = list(geoms)
-        rows = [row for row in (primitive_row(g, colours.get(g, default)) for g in geoms) if row is not None]
-        table = np.ascontiguousarray(np.array(rows) if rows else np.zeros((0, STRIDE)))
-        meshes = [g for g in geoms if isinstance(g, MeshGeom)]
-        poses = [mesh_pose(mesh, colours.get(mesh, default)) for mesh in meshes]  # alive until tso_render returns
+        """Cast the rays at ``table`` (rows of shape_row or primitive_row, tested in their order) and ``meshes``."""
+        table = np.ascontiguousarray(table, dtype=np.float64).reshape(-1, STRIDE)
+        meshes = [
+            (pose, np.ascontiguousarray(vertices, dtype=np.float64), np.ascontiguousarray(faces, dtype=np.uint32))
+            for pose, vertices, faces in meshes
+        ]  # alive until tso_render returns
         mesh_table = (Mesh * len(meshes))(
             *(
                 Mesh(
                     _pointer(pose, ctypes.c_double),
-                    len(m.faces),
-                    _pointer(m.vertices, ctypes.c_double),
-                    _pointer(m.faces, ctypes.c_uint32),
+                    len(faces),
+                    _pointer(vertices, ctypes.c_double),
+                    _pointer(faces, ctypes.c_uint32),
                 )
-                for pose, m in zip(poses, meshes)
+                for pose, vertices, faces in meshes
             )
         )
         width, height = self.size
@@ -143,7 +169,7 @@ class RayCaster:
             height,
             _pointer(origin, double),
             _pointer(rotation, double),
-            len(rows),
+            len(table),
             _pointer(table, double),
             len(meshes),
             mesh_table,

@@ -1,4 +1,4 @@
-"""Rays against ODE's primitive shapes in numpy: many rays from one origin at once, for the cameras.
+"""Rays against ODE's primitive shapes and triangles in numpy: many rays from one origin at once, for the cameras.
 
 Each ``hit_*`` function takes the rays' origin and unit directions in the shape's own frame and returns, per ray,
 the distance to the first surface it enters (inf: none within (t_min, inf)) and the outward normal there. Rays
@@ -6,10 +6,11 @@ that start inside a shape do not see it (its faces point away, as a renderer cul
 """
 from __future__ import annotations
 
-from typing import Optional, Tuple
+from typing import Tuple
 
 import numpy as np
-import ode
+
+from turtle_sim_ode.sensors.ray_kernel import BOX, CAPSULE, CYLINDER, SPHERE
 
 Hits = Tuple[np.ndarray, np.ndarray]  # distances (M,), normals (M, 3)
 
@@ -125,38 +126,34 @@ def hit_triangle(origin: np.ndarray, dirs: np.ndarray, corners: np.ndarray, t_mi
     return np.where(hit, t, np.inf), np.broadcast_to(normal, dirs.shape)
 
 
-class Primitive:
-    """One ODE geom as the ray caster sees it: its pose in the world, a bounding radius and a ``hit`` in its frame."""
+def mesh_triangles(pose: np.ndarray, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """A mesh's triangles' corners in the world, (M, 3, 3), from its pose (sensors.ray_kernel.mesh_pose)."""
+    rotation = pose[3:12].reshape(3, 3)
+    return (vertices @ rotation.T + pose[:3])[faces]
 
-    def __init__(self, geom: ode.GeomObject) -> None:
-        self.position = np.array(geom.getPosition(), dtype=float)
-        self.rotation = np.array(geom.getRotation(), dtype=float).reshape(3, 3)  # world from geom
-        if isinstance(geom, ode.GeomBox):
-            half = np.array(geom.getLengths(), dtype=float) / 2
-            self.radius = float(np.linalg.norm(half))
-            self._hit = lambda o, d, t_min: hit_box(o, d, half, t_min)
-        elif isinstance(geom, ode.GeomSphere):
-            radius = geom.getRadius()
-            self.radius = radius
-            self._hit = lambda o, d, t_min: hit_sphere(o, d, radius, t_min)
-        elif isinstance(geom, (ode.GeomCylinder, ode.GeomCapsule)):
-            radius, length = geom.getParams()
-            hit = hit_cylinder if isinstance(geom, ode.GeomCylinder) else hit_capsule
-            self.radius = float(np.hypot(radius, length / 2)) + (radius if hit is hit_capsule else 0.0)
-            self._hit = lambda o, d, t_min: hit(o, d, radius, length, t_min)
+
+class Primitive:
+    """A row of the ray kernel's table (sensors.ray_kernel.shape_row) as the numpy caster sees it: its pose in the
+    world, its bounding radius, its colour and a ``hit`` in its frame."""
+
+    def __init__(self, row: np.ndarray) -> None:
+        self.position = row[1:4]
+        self.rotation = row[4:13].reshape(3, 3)  # world from shape
+        self.radius = float(row[19])
+        self.colour = tuple(row[16:19])
+        kind, sizes = int(row[0]), row[13:16]
+        if kind == BOX:
+            self._hit = lambda o, d, t_min: hit_box(o, d, sizes, t_min)
+        elif kind == SPHERE:
+            self._hit = lambda o, d, t_min: hit_sphere(o, d, sizes[0], t_min)
+        elif kind in (CYLINDER, CAPSULE):
+            hit = hit_cylinder if kind == CYLINDER else hit_capsule
+            self._hit = lambda o, d, t_min: hit(o, d, sizes[0], sizes[1], t_min)
         else:
-            raise TypeError(f"no ray test for {type(geom).__name__}")
+            raise TypeError(f"no ray test for shape kind {kind}")
 
     def hit(self, origin: np.ndarray, dirs: np.ndarray, t_min: float) -> Hits:
         """Distances and world normals of rays from ``origin`` along unit world ``dirs`` (M, 3)."""
         local_origin = (origin - self.position) @ self.rotation
         t, normals = self._hit(local_origin, dirs @ self.rotation, t_min)
         return t, normals @ self.rotation.T
-
-
-def primitive(geom: ode.GeomObject) -> Optional[Primitive]:
-    """The geom as a Primitive, None for other shapes (trimeshes: see hit_triangle; planes: see hit_plane; rays)."""
-    try:
-        return Primitive(geom)
-    except TypeError:
-        return None

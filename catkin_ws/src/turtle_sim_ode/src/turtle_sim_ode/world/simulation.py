@@ -15,6 +15,7 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
 from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors
+from turtle_sim_ode.sensors.scene import Scene
 from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
 from turtle_sim_ode.world.plugins import ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
@@ -74,8 +75,18 @@ class Simulation(WorldControl):
         # The loaded world's sun direction and sky colour for the cameras (None: Gazebo's defaults).
         self.light_direction: Optional[Vec3] = None
         self.sky_colour: Optional[Tuple[float, float, float]] = None
-        # Where model://, package:// and file:// names are read from (None: no file is read; a mesh is refused).
-        self.resources: Optional[ResourcePaths] = None
+        # What the cameras see of the models (their visuals), whose meshes are read through ``resources``.
+        self.scene = Scene(self.models)
+
+    @property
+    def resources(self) -> Optional[ResourcePaths]:
+        """Where model://, package:// and file:// names are read from (None: no file is read; a mesh is refused):
+        collision meshes when a model is spawned, visual meshes when a camera first draws it."""
+        return self.scene.resources
+
+    @resources.setter
+    def resources(self, paths: Optional[ResourcePaths]) -> None:
+        self.scene.resources = paths
 
     @property
     def sim_time(self) -> float:
@@ -108,6 +119,7 @@ class Simulation(WorldControl):
             raise ModelError(f"model name '{name}' must not contain '{SCOPE}'")
         if name in self.models:
             raise ModelError(f"a model named '{name}' already exists")
+        robot.base = base
         if uses_meshes(robot):
             load_meshes(robot, self.resources, base)
         sensors = model_sensors(robot)

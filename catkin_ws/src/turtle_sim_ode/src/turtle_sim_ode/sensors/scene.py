@@ -1,0 +1,201 @@
+"""What the cameras see of the world's models. Gazebo's cameras draw visuals, not collisions: a link with visuals is
+drawn from them (box, sphere, cylinder, mesh; each in its own colour, at the link's pose composed with its origin);
+a link without any is drawn from its collision geoms in the link's colour (Gazebo would draw nothing there). The
+result is what both ray casters take: rows of the ray kernel's primitive table and meshes with their poses
+(sensors.ray_kernel).
+
+A model's visuals are prepared on a camera's first rendering of it and kept while the model exists (a deleted or
+respawned model is a new BuiltModel): a visual mesh is read then, through ``resources`` as collision meshes are. A
+visual mesh that cannot be read gives one warning naming it, and its link is drawn from its collisions."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Dict, List, Mapping, Optional, Set, Tuple
+
+import numpy as np
+import ode
+
+from turtle_sim_ode.models.builder import BuiltModel, pose_transform, quat_matrix
+from turtle_sim_ode.models.materials import DEFAULT_COLOR, RGB
+from turtle_sim_ode.models.meshes import Triangles, mesh_file, scaled_mesh
+from turtle_sim_ode.models.resources import ResourcePaths
+from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.urdf import Mesh, Visual
+from turtle_sim_ode.physics.trimesh import MeshGeom
+from turtle_sim_ode.physics.world import PhysicsWorld
+from turtle_sim_ode.sensors.ray_kernel import STRIDE, MeshItem, mesh_pose, primitive_row, visual_row
+from turtle_sim_ode.sensors.rays import world_geoms
+
+
+POSE_COLUMNS = 12  # a position and a rotation (row-major), from the first of them: in shape_row's and mesh_pose's rows
+
+
+def _matrices(quaternions: np.ndarray) -> np.ndarray:
+    """Rotation matrices (K, 3, 3) of unit quaternions (K, 4) (w, x, y, z), as models.builder.quat_matrix."""
+    w, x, y, z = quaternions.T
+    return np.stack(
+        (
+            (1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)),
+            (2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)),
+            (2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)),
+        )
+    ).transpose(2, 0, 1)
+
+
+def _placed(local: np.ndarray, at: int, positions: np.ndarray, rotations: np.ndarray) -> np.ndarray:
+    """Copies of rows posed in their links (a position and a rotation from column ``at``) posed in the world by their
+    links' ``positions`` (K, 3) and ``rotations`` (K, 3, 3)."""
+    placed = local.copy()
+    rotation = at + 3
+    placed[:, at:rotation] = positions + np.einsum("kij,kj->ki", rotations, local[:, at:rotation])
+    turns = local[:, rotation : at + POSE_COLUMNS].reshape(-1, 3, 3)
+    placed[:, rotation : at + POSE_COLUMNS] = (rotations @ turns).reshape(-1, 9)
+    return placed
+
+
+# A visual posed in its link: a primitive's row (shape_row) and None, or a mesh's pose (mesh_pose) and its arrays.
+Part = Tuple[np.ndarray, Optional[Tuple[np.ndarray, np.ndarray]]]
+
+
+@dataclass
+class _View:
+    """A model as the cameras draw it: the links drawn from their visuals, with those visuals as primitive rows and
+    mesh poses, posed in their links (``*_links``: the index of each one's link), and the meshes' arrays; the
+    colours of the collision geoms drawn, and the collision geoms not drawn (their links' visuals stand for them)."""
+
+    links: List[str] = field(default_factory=list)
+    rows: np.ndarray = field(default_factory=lambda: np.zeros((0, STRIDE)))
+    row_links: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    mesh_poses: np.ndarray = field(default_factory=lambda: np.zeros((0, POSE_COLUMNS + 3)))
+    mesh_links: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    mesh_arrays: List[Tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    colours: Dict[ode.GeomObject, RGB] = field(default_factory=dict)
+    hidden: Set[ode.GeomObject] = field(default_factory=set)
+
+    def set_links(self, links: Dict[str, List[Part]]) -> None:
+        """The links drawn from their visuals, each with its parts."""
+        self.links = list(links)
+        rows: List[np.ndarray] = []
+        row_links: List[int] = []
+        poses: List[np.ndarray] = []
+        mesh_links: List[int] = []
+        for index, parts in enumerate(links.values()):
+            for row, mesh in parts:
+                if mesh is None:
+                    rows.append(row)
+                    row_links.append(index)
+                else:
+                    poses.append(row)
+                    mesh_links.append(index)
+                    self.mesh_arrays.append(mesh)
+        self.rows, self.row_links = np.array(rows).reshape(-1, STRIDE), np.array(row_links, dtype=int)
+        self.mesh_poses = np.array(poses).reshape(-1, POSE_COLUMNS + 3)
+        self.mesh_links = np.array(mesh_links, dtype=int)
+
+    def draw(self, model: BuiltModel, tables: List[np.ndarray], meshes: List[MeshItem]) -> None:
+        """Append the visuals, posed in the world now, to ``tables`` and ``meshes``: Python work per link, numpy
+        work per visual."""
+        if not self.links:
+            return
+        transforms = [model.link_transform(link) for link in self.links]
+        positions = np.array([transform[0] for transform in transforms])
+        rotations = _matrices(np.array([transform[1] for transform in transforms]))
+        if len(self.rows):
+            tables.append(_placed(self.rows, 1, positions[self.row_links], rotations[self.row_links]))
+        if self.mesh_arrays:
+            poses = _placed(self.mesh_poses, 0, positions[self.mesh_links], rotations[self.mesh_links])
+            meshes.extend((pose,) + arrays for pose, arrays in zip(poses, self.mesh_arrays))
+
+
+class Scene:
+    """The models of ``models`` (the live mapping of a simulation's models, by name) as cameras draw them; visual
+    meshes are read through ``resources``. ``take_warnings`` hands over what could not be drawn, once."""
+
+    def __init__(self, models: Mapping[str, BuiltModel], resources: Optional[ResourcePaths] = None) -> None:
+        self.models = models
+        self.resources = resources
+        self._views: Dict[BuiltModel, _View] = {}
+        self._warnings: List[str] = []
+
+    def take_warnings(self) -> List[str]:
+        """The warnings since the last call (a visual mesh that cannot be read: once per model)."""
+        found, self._warnings = self._warnings, []
+        return found
+
+    def _prepare(self, model: BuiltModel) -> _View:
+        view = _View()
+        cache: Dict[str, Triangles] = {}
+        drawn: Dict[str, List[Part]] = {}
+        for link, geoms in model.geoms.items():
+            description = model.robot.links[link]
+            parts = self._parts(model, link, description.visuals, cache)
+            if parts:
+                drawn[link] = parts
+                view.hidden.update(geoms)
+            else:
+                colour = description.color if description.color is not None else DEFAULT_COLOR
+                view.colours.update((geom, colour) for geom in geoms)
+        view.set_links(drawn)
+        return view
+
+    def _parts(self, model: BuiltModel, link: str, visuals: List[Visual], cache: Dict[str, Triangles]) -> List[Part]:
+        """The link's visuals posed in it; none if a mesh of them cannot be read (with a warning)."""
+        parts = []
+        for visual in visuals:
+            colour = visual.color if visual.color is not None else DEFAULT_COLOR
+            position, quaternion = pose_transform(visual.origin)
+            rotation = np.ravel(quat_matrix(quaternion))
+            if not isinstance(visual.geometry, Mesh):
+                parts.append((visual_row(visual.geometry, position, rotation, colour), None))
+                continue
+            what = f"model '{model.name}' link '{link}' visual '{visual.name}' mesh '{visual.geometry.uri}'"
+            try:
+                triangles = mesh_file(self.resources, visual.geometry, model.robot.base, what, cache)
+                vertices, faces = scaled_mesh(triangles, visual.geometry.scale, what)
+            except ModelError as error:
+                self._warnings.append(f"{error}: the cameras draw link '{link}' from its collisions")
+                return []
+            parts.append((mesh_pose(position, rotation, colour), (vertices, faces.astype(np.uint32))))
+        return parts
+
+    def _current(self, camera_model: BuiltModel) -> List[Tuple[BuiltModel, _View]]:
+        """The views of every model but ``camera_model``'s, prepared where new; those of models gone are dropped."""
+        models = list(self.models.values())
+        live = set(models)
+        if any(model not in live for model in self._views):
+            self._views = {model: view for model, view in self._views.items() if model in live}
+        found = []
+        for model in models:
+            if model is camera_model:
+                continue
+            view = self._views.get(model)
+            if view is None:
+                view = self._views[model] = self._prepare(model)
+            found.append((model, view))
+        return found
+
+    def drawables(self, physics: PhysicsWorld, camera_model: BuiltModel) -> Tuple[np.ndarray, List[MeshItem]]:
+        """What a camera on ``camera_model`` draws now, its own model and the ground plane aside: the primitive
+        table (N, STRIDE) and the meshes."""
+        views = self._current(camera_model)
+        colours: Dict[ode.GeomObject, RGB] = {}
+        hidden: Set[ode.GeomObject] = set()
+        for _, view in views:
+            colours.update(view.colours)
+            hidden.update(view.hidden)
+        rows: List[np.ndarray] = []
+        meshes: List[MeshItem] = []
+        for geom in world_geoms(physics, camera_model):
+            if geom in hidden:
+                continue
+            colour = colours.get(geom, DEFAULT_COLOR)
+            if isinstance(geom, MeshGeom):
+                meshes.append((mesh_pose(geom.getPosition(), geom.getRotation(), colour), geom.vertices, geom.faces))
+                continue
+            row = primitive_row(geom, colour)
+            if row is not None:
+                rows.append(row)
+        tables = [np.array(rows).reshape(-1, STRIDE)]
+        for model, view in views:
+            view.draw(model, tables, meshes)
+        return np.concatenate(tables), meshes
