@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import ode
@@ -13,6 +14,7 @@ from turtle_sim_ode.models.sdf import parse_sdf_model, parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.physics.trimesh import MeshGeom
+from turtle_sim_ode.sensors import ray_kernel
 from turtle_sim_ode.sensors.camera import CameraSensor
 from turtle_sim_ode.sensors.config import read_sdf_sensors, read_sensors
 from turtle_sim_ode.sensors.raycast import hit_capsule, hit_cylinder, hit_sphere
@@ -303,3 +305,24 @@ def test_the_worlds_sun_and_sky_light_the_picture() -> None:
         frame = camera.render(sim.scene)
         assert tuple(frame.rgb[0, 16]) == (0, 0, 255)  # the sky
         assert tuple(frame.rgb[23, 16]) == (179, 179, 179)  # Gazebo/Grey ground, the sun straight above: 0.7 lit fully
+
+
+@pytest.mark.parametrize(
+    "cpu_max, cfs_quota, cfs_period, expected",
+    [
+        ("max 100000\n", None, None, None),
+        ("150000 100000\n", None, None, 1.5),
+        (None, "-1\n", "100000\n", None),
+        (None, "200000\n", "100000\n", 2.0),
+        (None, None, None, None),
+    ],
+)
+def test_the_cpu_quota_of_a_container_bounds_the_ray_threads(tmp_path, cpu_max, cfs_quota, cfs_period, expected):
+    paths = []
+    for name, text in (("cpu.max", cpu_max), ("quota", cfs_quota), ("period", cfs_period)):
+        path = tmp_path / name
+        if text is not None:
+            path.write_text(text)
+        paths.append(str(path))
+    assert ray_kernel.cpu_quota(*paths) == expected
+    assert 1 <= ray_kernel.usable_cpus() <= len(os.sched_getaffinity(0))

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ctypes
 import functools
+import math
 import os
 from typing import Optional, Sequence, Tuple
 
@@ -86,6 +87,37 @@ def visual_row(geometry: Geometry, position: Sequence[float], rotation: Sequence
     raise TypeError(f"no row for {type(geometry).__name__} (meshes: see Mesh)")
 
 
+# A container's CPU quota, cgroup v2 then v1, as the container sees its own cgroup.
+CPU_MAX = "/sys/fs/cgroup/cpu.max"  # "QUOTA PERIOD" or "max PERIOD"
+CFS_QUOTA, CFS_PERIOD = "/sys/fs/cgroup/cpu/cpu.cfs_quota_us", "/sys/fs/cgroup/cpu/cpu.cfs_period_us"  # -1: none
+
+
+def _read(path: str) -> Optional[str]:
+    try:
+        with open(path) as file:
+            return file.read()
+    except OSError:
+        return None
+
+
+def cpu_quota(cpu_max: str = CPU_MAX, cfs_quota: str = CFS_QUOTA, cfs_period: str = CFS_PERIOD) -> Optional[float]:
+    """CPUs' worth of time the cgroup quota grants this process (docker --cpus), None without a quota."""
+    text = _read(cpu_max)
+    parts = text.split() if text is not None else [_read(cfs_quota) or "", _read(cfs_period) or ""]
+    try:
+        quota, period = float(parts[0]), float(parts[1])
+    except (ValueError, IndexError):  # "max", missing files
+        return None
+    return quota / period if quota > 0 and period > 0 else None
+
+
+def usable_cpus() -> int:
+    """The CPUs this process may run on, fewer under a cgroup quota: threads beyond it would be throttled."""
+    cpus = len(os.sched_getaffinity(0))
+    quota = cpu_quota()
+    return max(1, min(cpus, math.ceil(quota))) if quota is not None else cpus
+
+
 class Mesh(ctypes.Structure):
     """src/ray_kernel.c's Mesh."""
 
@@ -115,10 +147,10 @@ class RayCaster:
     nothing is hit; depth as float32, NaN there; rgb): rays through the pixel centres of a pinhole (focal, cx, cy)."""
 
     def __init__(self, lib: ctypes.CDLL, width: int, height: int, threads: Optional[int] = None) -> None:
-        """``threads``: how many bands of rows are cast at once (default: the CPUs this process may run on)."""
+        """``threads``: how many bands of rows are cast at once (default: usable_cpus())."""
         self._lib = lib
         self.size = (width, height)
-        self.threads = threads if threads is not None else len(os.sched_getaffinity(0))
+        self.threads = threads if threads is not None else usable_cpus()
         self.tests = 0  # ray tests made by the last render
         # Scratch and cloud buffers, reused frame after frame (fresh megabytes cost page faults every frame).
         self._distance = np.empty((height, width))
