@@ -72,6 +72,7 @@ class CamerasThroughRos(unittest.TestCase):
             self.assertAlmostEqual(z, distance, delta=tolerance)
             info = rospy.wait_for_message("/camera/rgb/camera_info", CameraInfo, timeout=30)
             self.assertAlmostEqual(info.K[0], 160 / (2 * math.tan(1.3439 / 2)), delta=1e-6)
+            self.assertAlmostEqual(info.P[3], -info.K[0] * 0.07, delta=1e-9)  # the waffle's <hackBaseline>
         finally:
             self.delete_model("red_box")
 

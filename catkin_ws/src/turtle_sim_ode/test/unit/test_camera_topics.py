@@ -12,10 +12,11 @@ import numpy as np
 import pytest
 import rospy
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2
-from test_camera import camera_world
+from test_camera import WAFFLE, camera_world
 
 from turtle_sim_ode.ros import camera_topics, periodic
 from turtle_sim_ode.ros.wire import joined
+from turtle_sim_ode.sensors.config import read_sensors
 
 
 class FakePublisher:
@@ -131,3 +132,25 @@ def test_a_plain_camera_has_image_and_info_only_in_its_format(monkeypatch) -> No
     camera_publisher.publish(rospy.Time(1, 0), 1.0)
     image: Image = FakePublisher.made["cam/image_raw"].messages[0]
     assert (image.encoding, image.step, len(image.data), camera_publisher.rendered) == ("mono8", 40, 1200, 1)
+
+
+def test_camera_info_carries_the_plugins_baseline_distortion_and_lens_tags_as_gazebo_ros() -> None:
+    """The first of a repeated tag counts (sdformat's GetElement): the waffle's second <hackBaseline>0 does not."""
+    urdf = WAFFLE.replace("</plugin>", "<hackBaseline>0</hackBaseline></plugin>")
+    urdf = urdf.replace("<distortionK1>0.0</distortionK1>", "<distortionK1>0.1</distortionK1>")
+    urdf = urdf.replace("<distortionK3>0.0</distortionK3>", "<distortionK3>0.3</distortionK3>")
+    urdf = urdf.replace("<distortionT2>0.0</distortionT2>", "<distortionT2>0.5</distortionT2>")
+    urdf = urdf.replace("<Cx>0.0</Cx>", "<Cx>81.5</Cx>").replace(
+        "<focalLength>0</focalLength>", "<focalLength>100</focalLength>"
+    )
+    blocks = read_sensors(urdf)
+    config = blocks.cameras[0]
+    info = camera_topics.camera_info(config, "optical", 79.5, 59.5)
+    assert info.K == [100.0, 0.0, 81.5, 0.0, 100.0, 59.5, 0.0, 0.0, 1.0]
+    assert info.P[3] == pytest.approx(-100.0 * 0.07)
+    assert list(info.D) == [0.1, 0.0, 0.3, 0.0, 0.5]  # k1, k2, k3, t1, t2: gazebo_ros's order
+    assert any("<focalLength> 100" in warning for warning in blocks.warnings), blocks.warnings
+    plain = camera_topics.camera_info(
+        read_sensors(WAFFLE.replace("<hackBaseline>0.07", "<hackBaseline>0")).cameras[0], "o", 79.5, 59.5
+    )
+    assert plain.P[3] == 0.0 and list(plain.D) == [0.0] * 5 and plain.K[2] == 79.5

@@ -28,6 +28,7 @@ from turtle_sim_ode.models.text import (
     ModelError,
     child_text,
     parse_xml,
+    plugin_params,
     read_number,
     read_optional_number,
     required_attribute,
@@ -219,7 +220,7 @@ def _plugin(element: Element, what: str) -> GazeboPlugin:
     return GazeboPlugin(
         required_attribute(element, "filename", f"{what} <plugin>"),
         element.get("name", ""),
-        {child.tag: (child.text or "").strip() for child in element},
+        plugin_params(element),
     )
 
 

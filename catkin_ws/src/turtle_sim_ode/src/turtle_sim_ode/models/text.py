@@ -3,7 +3,7 @@ that every parser, sensor and plugin reader uses, so that a bad number gets the 
 from __future__ import annotations
 
 import math
-from typing import Optional
+from typing import Dict, Optional
 from xml.etree.ElementTree import Element, ParseError
 
 import defusedxml
@@ -49,6 +49,15 @@ def child_text(element: Optional[Element], path: str) -> Optional[str]:
     if found is None or found.text is None or not found.text.strip():
         return None
     return found.text.strip()
+
+
+def plugin_params(plugin: Element) -> Dict[str, str]:
+    """A ``<plugin>``'s children as tag -> stripped text; of a tag given twice, the first, as sdformat's GetElement
+    (and so a gazebo_ros plugin) reads it (turtlebot3_waffle's camera has two <hackBaseline>s: Gazebo takes 0.07)."""
+    params: Dict[str, str] = {}
+    for child in plugin:
+        params.setdefault(child.tag, (child.text or "").strip())
+    return params
 
 
 def read_optional_number(text: Optional[str], what: str, minimum: float = -math.inf) -> Optional[float]:

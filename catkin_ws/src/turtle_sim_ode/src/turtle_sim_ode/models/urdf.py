@@ -6,7 +6,7 @@ from typing import Dict, List, Optional, Tuple, Union
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.materials import RGB, gazebo_material, urdf_named_materials, urdf_visual_color
-from turtle_sim_ode.models.text import ModelError, parse_xml, read_number, required_attribute
+from turtle_sim_ode.models.text import ModelError, parse_xml, plugin_params, read_number, required_attribute
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.sanity import MAX_INERTIA, MAX_LENGTH, MAX_MASS, MIN_MASS
 
@@ -448,7 +448,7 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
                 GazeboPlugin(
                     required_attribute(plugin, "filename", "<gazebo><plugin>"),
                     plugin.get("name", ""),
-                    {child.tag: (child.text or "").strip() for child in plugin},
+                    plugin_params(plugin),
                 )
             )
         return

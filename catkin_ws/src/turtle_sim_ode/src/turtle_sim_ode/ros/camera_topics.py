@@ -31,16 +31,20 @@ POINT_FIELDS = [
 
 
 def camera_info(config: CameraConfig, frame: str, cx: float, cy: float) -> CameraInfo:
-    """K and P of an ideal pinhole (no distortion: plumb_bob with zeros) for ``config``'s size and FOV."""
-    f = config.focal_length
+    """K and P of the pinhole the picture is rendered with (``config``'s size and FOV, principal point ``cx``, ``cy``),
+    but where the plugin's tags say otherwise: gazebo_ros_camera_utils reports focalLength, Cx, Cy when not 0, Tx =
+    -fx hackBaseline, and D = distortionK1, K2, K3, T1, T2 (plumb_bob, in that order), though Gazebo's picture does
+    not follow them either."""
+    f = config.info_focal_length or config.focal_length
+    cx, cy = config.info_cx or cx, config.info_cy or cy
     info = CameraInfo()
     info.header.frame_id = frame
     info.width, info.height = config.width, config.height
     info.distortion_model = "plumb_bob"
-    info.D = [0.0] * 5
+    info.D = list(config.distortion)
     info.K = [f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0]
     info.R = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
-    info.P = [f, 0.0, cx, 0.0, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+    info.P = [f, 0.0, cx, -f * config.hack_baseline, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
     return info
 
 

@@ -8,7 +8,7 @@ from typing import List, Mapping, Optional, Sequence, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.sdf import parse_sdf_model
-from turtle_sim_ode.models.text import ModelError, child_text, read_number
+from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
 from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
 
 LASER_PLUGINS = ("libgazebo_ros_laser.so", "libgazebo_ros_ray_sensor.so")
@@ -185,6 +185,13 @@ class CameraConfig:
     cutoff_max: float = 5.0
     pose: Tuple[float, float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     robot_namespace: str = ""
+    # What gazebo_ros_camera_utils puts in camera_info from the plugin's tags (the picture does not change with them):
+    # focalLength, Cx, Cy where not 0 (0: ours), P[3] = -fx hackBaseline, D = distortionK1, K2, K3, T1, T2 in that order.
+    info_focal_length: float = 0.0
+    info_cx: float = 0.0
+    info_cy: float = 0.0
+    hack_baseline: float = 0.0
+    distortion: Tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)
 
     @property
     def encoding(self) -> str:
@@ -303,7 +310,7 @@ def _camera_config(link: str, sensor: Element, plugin: Element, warnings: List[s
     if stddev < 0:
         raise ModelError(f"{what} <noise><stddev> must be >= 0, got {stddev}")
     sensor_rate = _rate(sensor, ("update_rate",), 0.0, what)
-    params = {child.tag: (child.text or "").strip() for child in plugin}
+    params = plugin_params(plugin)
     plugin_rate = read_number(params.get("updateRate"), f"{what} <updateRate>", 0.0, minimum=0.0)
     rates = [rate for rate in (sensor_rate, plugin_rate) if rate > 0]
     cutoff = read_number(params.get("pointCloudCutoff"), f"{what} <pointCloudCutoff>", defaults.cutoff, minimum=0.0)
@@ -315,6 +322,19 @@ def _camera_config(link: str, sensor: Element, plugin: Element, warnings: List[s
     )
     if width * height > MAX_CAMERA_PIXELS:
         raise ModelError(f"{what} <image> {width}x{height} is over {MAX_CAMERA_PIXELS} pixels (2048x2048)")
+
+    def tag(name: str) -> float:
+        return read_number(params.get(name) or None, f"{what} <{name}>", 0.0)
+
+    given_focal, computed_focal = tag("focalLength"), width / (2.0 * math.tan(fov / 2.0))
+    if given_focal and not math.isclose(given_focal, computed_focal, rel_tol=1e-6):
+        warnings.append(
+            f"{what}: <focalLength> {given_focal:g} is not width / (2 tan(horizontal_fov / 2)) = {computed_focal:g}: "
+            "camera_info reports it, the picture is rendered with the FOV (as in Gazebo)"
+        )
+    distortion = tuple(
+        tag(name) for name in ("distortionK1", "distortionK2", "distortionK3", "distortionT1", "distortionT2")
+    )
     # The depth plugins' own defaults for the image topics (gazebo_ros_openni_kinect / _depth_camera).
     image_topic, info_topic = ("ir/image_raw", "ir/camera_info") if depth else ("image_raw", "camera_info")
     return CameraConfig(
@@ -341,6 +361,11 @@ def _camera_config(link: str, sensor: Element, plugin: Element, warnings: List[s
         cutoff_max=cutoff_max,
         pose=_sensor_pose(sensor, what),
         robot_namespace=params.get("robotNamespace", ""),
+        info_focal_length=given_focal,
+        info_cx=tag("Cx"),
+        info_cy=tag("Cy"),
+        hack_baseline=tag("hackBaseline"),
+        distortion=distortion,  # type: ignore[arg-type]
     )
 
 
