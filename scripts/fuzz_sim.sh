@@ -9,4 +9,5 @@ seed=${2:-$RANDOM}
 SOURCE_WORKSPACE="$PWD/catkin_ws" . scripts/lib/ros_env.sh
 echo "fuzz_sim: $examples examples a test, seed $seed"
 TURTLE_SIM_FUZZ_EXAMPLES="$examples" TURTLE_SIM_FUZZ_SEED="$seed" /usr/bin/python3 -m pytest -q -p no:cacheprovider \
-  catkin_ws/src/turtle_sim_ode/test/unit/test_fuzz.py --hypothesis-show-statistics
+  catkin_ws/src/turtle_sim_ode/test/unit/test_fuzz.py catkin_ws/src/turtle_sim_ode/test/unit/test_camera_fuzz.py \
+  --hypothesis-show-statistics

@@ -1,8 +1,8 @@
 /* The cameras' ray caster (loaded by turtle_sim_ode.sensors.ray_kernel through ctypes): one ray per pixel from the
- * optical centre against primitive shapes (box, sphere, cylinder, capsule along z, plane), each tested only in the
- * pixels its bounding box's projection may cover. The same tests as turtle_sim_ode.sensors.raycast, which the
- * Python side uses where this library is not built, but on rays (u, v, 1) whose parameter is the depth, and with
- * the near clip on depth (numpy: on the distance along the ray). */
+ * optical centre against primitive shapes (box, sphere, cylinder, capsule along z, plane) and triangle meshes, each
+ * tested only in the pixels its projection may cover. The same tests as turtle_sim_ode.sensors.raycast, which the
+ * Python side uses where this library is not built, but on rays (u, v, 1) whose parameter is the depth (numpy: unit
+ * rays, the near clip turned into a distance per ray); both clip at the near plane, as OpenGL does. */
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>

@@ -156,7 +156,7 @@ class CameraSensor:
         distance = np.full((height, width), np.inf)
         shade = np.empty((height, width, 3))
         shade[:, :] = self._sky
-        t_min = config.near
+        t_min = config.near / self._depth_per_distance  # the near clip is a plane (depth), as in C and OpenGL
 
         def paint(t: np.ndarray, normals: np.ndarray, colour: RGB, box: Tuple[int, int, int, int]) -> None:
             i0, i1, j0, j1 = box
@@ -170,7 +170,7 @@ class CameraSensor:
             shade[j0:j1, i0:i1][nearer] = np.outer(AMBIENT + (1.0 - AMBIENT) * lit, colour)
 
         normal, offset = ground.getParams()
-        t, normals = hit_plane(origin, dirs.reshape(-1, 3), np.array(normal, dtype=float), offset, t_min)
+        t, normals = hit_plane(origin, dirs.reshape(-1, 3), np.array(normal, dtype=float), offset, t_min.reshape(-1))
         paint(t, normals, GROUND_COLOR, (0, width, 0, height))
         for pose, vertices, faces in meshes:
             colour = tuple(pose[12:15])
@@ -181,14 +181,16 @@ class CameraSensor:
                 )
                 if box is not None:
                     i0, i1, j0, j1 = box
-                    t, normals = hit_triangle(origin, dirs[j0:j1, i0:i1].reshape(-1, 3), corners, t_min)
+                    t, normals = hit_triangle(
+                        origin, dirs[j0:j1, i0:i1].reshape(-1, 3), corners, t_min[j0:j1, i0:i1].reshape(-1)
+                    )
                     paint(t, normals, colour, box)
         for row in table:
             shape = Primitive(row)
             box = self._pixel_box((shape.position - origin) @ rotation, shape.radius)
             if box is not None:
                 i0, i1, j0, j1 = box
-                t, normals = shape.hit(origin, dirs[j0:j1, i0:i1].reshape(-1, 3), t_min)
+                t, normals = shape.hit(origin, dirs[j0:j1, i0:i1].reshape(-1, 3), t_min[j0:j1, i0:i1].reshape(-1))
                 paint(t, normals, shape.colour, box)
         depth = distance * self._depth_per_distance
         missed = ~(depth <= config.far)

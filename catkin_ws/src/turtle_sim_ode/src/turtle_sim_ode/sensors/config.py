@@ -10,6 +10,7 @@ from xml.etree.ElementTree import Element
 from turtle_sim_ode.models.sdf import parse_sdf_model
 from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
 from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
+from turtle_sim_ode.physics import sanity
 
 LASER_PLUGINS = ("libgazebo_ros_laser.so", "libgazebo_ros_ray_sensor.so")
 # gazebo_plugins' IMUs: the model plugin (also found inside <sensor type="imu">, as turtlebot3 has it) and the
@@ -268,6 +269,8 @@ def _sensor_pose(sensor: Element, what: str) -> Tuple[float, float, float, float
         pose = ()
     if len(pose) != 6 or not all(math.isfinite(v) for v in pose):
         raise ModelError(f"{what} <pose> must be 6 finite numbers, got '{pose_text}'")
+    for value in pose:  # within the world's lengths, not subnormal (physics.sanity)
+        sanity.number(value, f"{what} <pose>", -sanity.MAX_LENGTH, sanity.MAX_LENGTH, ModelError)
     return pose  # type: ignore[return-value]
 
 
