@@ -10,7 +10,7 @@ from typing import Callable
 import numpy as np
 from hypothesis import event, given, seed
 from hypothesis import strategies as st
-from test_fuzz import CLEAN_REFUSALS, FUZZ, SEED, hostile, number_text, rarely, signed_text
+from test_fuzz import CLEAN_REFUSALS, FUZZ, SEED, hostile, normal_floats, number_text, rarely, signed_text
 
 from turtle_sim_ode.ros.camera_topics import templates
 from turtle_sim_ode.sensors.camera import CameraSensor
@@ -66,9 +66,9 @@ def shapes(draw: Callable) -> str:
                 ]
             )
         )
-        where = " ".join(repr(draw(st.floats(min_value=-2.0, max_value=2.0, allow_subnormal=False))) for _ in range(3))
-        turn = " ".join(repr(draw(st.floats(min_value=-3.0, max_value=3.0, allow_subnormal=False))) for _ in range(3))
-        offset = repr(draw(st.floats(min_value=-0.3, max_value=0.3, allow_subnormal=False)))
+        where = " ".join(repr(draw(normal_floats(-2.0, 2.0))) for _ in range(3))
+        turn = " ".join(repr(draw(normal_floats(-3.0, 3.0))) for _ in range(3))
+        offset = repr(draw(normal_floats(-0.3, 0.3)))
         colour = draw(st.sampled_from(["Gazebo/Red", "Gazebo/Blue", "Gazebo/Wood"]))
         links.append(
             f'<link name="s{index}"><pose>{where} {turn}</pose><collision name="c"><geometry>{geometry}</geometry>'

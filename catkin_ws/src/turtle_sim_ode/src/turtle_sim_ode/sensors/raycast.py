@@ -3,7 +3,8 @@
 Each ``hit_*`` function takes the rays' origin and unit directions in the shape's own frame and returns, per ray,
 the distance to the first surface it enters (inf: none within (t_min, inf); t_min a number or one per ray) and
 the outward normal there. Rays
-that start inside a shape do not see it (its faces point away, as a renderer culls back faces).
+that start inside a shape do not see it (its faces point away, as a renderer culls back faces). Rays (nearly)
+parallel to a face divide by (nearly) zero: the infinities that come out are misses, so numpy is not warned.
 """
 from __future__ import annotations
 
@@ -18,7 +19,7 @@ Hits = Tuple[np.ndarray, np.ndarray]  # distances (M,), normals (M, 3)
 
 def hit_box(origin: np.ndarray, dirs: np.ndarray, half: np.ndarray, t_min: float) -> Hits:
     """An axis-aligned box of half extents ``half`` centred at 0 (slab method)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         inverse = 1.0 / dirs
         t1 = (-half - origin) * inverse
         t2 = (half - origin) * inverse
@@ -54,7 +55,7 @@ def _side(origin: np.ndarray, dirs: np.ndarray, radius: float, half_length: floa
     b = dx * origin[0] + dy * origin[1]
     c = origin[0] ** 2 + origin[1] ** 2 - radius * radius
     disc = b * b - a * c
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         t = (-b - np.sqrt(disc)) / a
         z = origin[2] + t * dirs[:, 2]
         hit = (disc >= 0) & (a > 0) & (t > t_min) & (np.abs(z) <= half_length)
@@ -76,7 +77,7 @@ def hit_cylinder(origin: np.ndarray, dirs: np.ndarray, radius: float, length: fl
     half = length / 2
     best = _side(origin, dirs, radius, half, t_min)
     for sign in (1.0, -1.0):
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             t = (sign * half - origin[2]) / dirs[:, 2]
             x = origin[0] + t * dirs[:, 0]
             y = origin[1] + t * dirs[:, 1]
@@ -100,7 +101,7 @@ def hit_capsule(origin: np.ndarray, dirs: np.ndarray, radius: float, length: flo
 def hit_plane(origin: np.ndarray, dirs: np.ndarray, normal: np.ndarray, offset: float, t_min: float) -> Hits:
     """The plane normal . p = offset (world frame), seen from its front side only."""
     facing = dirs @ normal
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         t = (offset - float(normal @ origin)) / facing
     hit = (facing < 0) & (t > t_min)
     return np.where(hit, t, np.inf), np.broadcast_to(normal, dirs.shape)
@@ -118,7 +119,7 @@ def hit_triangle(origin: np.ndarray, dirs: np.ndarray, corners: np.ndarray, t_mi
     p = np.cross(dirs, edge2)
     det = p @ edge1
     q = np.cross(to_origin, edge1)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         inverse = 1.0 / det
         a = (p @ to_origin) * inverse
         b = (dirs @ q) * inverse
