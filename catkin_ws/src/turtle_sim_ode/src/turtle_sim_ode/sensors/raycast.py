@@ -1,10 +1,10 @@
 """Rays against ODE's primitive shapes and triangles in numpy: many rays from one origin at once, for the cameras.
 
 Each ``hit_*`` function takes the rays' origin and unit directions in the shape's own frame and returns, per ray,
-the distance to the first surface it enters (inf: none within (t_min, inf); t_min a number or one per ray) and
-the outward normal there. Rays
-that start inside a shape do not see it (its faces point away, as a renderer culls back faces). Rays (nearly)
-parallel to a face divide by (nearly) zero: the infinities that come out are misses, so numpy is not warned.
+the distance to the first surface it enters (inf: none within (t_min, inf); t_min a number or one per ray) and the
+outward normal there. Rays that start inside a shape do not see it (its faces point away, as a renderer culls back
+faces). Rays (nearly) parallel to a face divide by (nearly) zero: the infinities that come out are misses, so numpy
+is not warned.
 """
 from __future__ import annotations
 
