@@ -54,6 +54,10 @@ def pieces(packed: Packed) -> List[memoryview]:
     return [memoryview(piece).cast("B") for piece in packed]
 
 
+def size_of(packed: Packed) -> int:
+    return len(packed) if isinstance(packed, bytes) else sum(len(view) for view in pieces(packed))
+
+
 def joined(packed: Packed) -> bytes:
     """A packed message's bytes (a copy if it is in pieces)."""
     return packed if isinstance(packed, bytes) else b"".join(pieces(packed))
@@ -86,10 +90,15 @@ class PackedPublisher:
             return
         with lock:  # rospy's own: one message at a time on the sockets, and seq, as its publish does
             impl.seq += 1
-            payload = pieces(pack(impl.seq, *fields))
-            data = [memoryview(_LENGTH.pack(sum(len(piece) for piece in payload)))] + payload
+            packed = pack(impl.seq, *fields)
+            data: Packed
+            if isinstance(packed, bytes):  # a step-rate message: one small copy costs less than views of it
+                data = _LENGTH.pack(len(packed)) + packed
+            else:
+                payload = pieces(packed)
+                data = [memoryview(_LENGTH.pack(sum(len(piece) for piece in payload)))] + payload
             stalled = send(impl.connections, data, STALLED_SUBSCRIBER_TIMEOUT_S)
-            impl.message_data_sent += sum(len(piece) for piece in data)
+            impl.message_data_sent += size_of(data)
         for connection in stalled:
             rospy.logwarn(
                 "%s: subscriber %s took no message for %.0f s: dropped (it may subscribe again)",
@@ -106,17 +115,16 @@ def send(connections: Sequence[Any], data: Packed, timeout: float) -> List[Any]:
     """Write ``data`` to each rospy TCPROS connection; one that fails is closed (rospy then forgets it). Returns
     those that timed out: their subscriber took nothing for ``timeout`` wall seconds."""
     stalled = []
-    views = pieces(data)
-    size = sum(len(view) for view in views)
+    size = size_of(data)
     for connection in connections:
         if connection.done:
             continue
         sock = getattr(connection, "socket", None)
         if sock is None:  # not a plain TCPROS connection (another publisher of the topic gave it a queue)
-            connection.write_data(joined(views))
+            connection.write_data(joined(data))
             continue
         try:
-            _send_all(sock, views, timeout)
+            _send_all(sock, data, timeout)
         except socket.timeout:
             stalled.append(connection)
             connection.close()  # part of a message may have gone: the stream cannot be resumed
@@ -128,9 +136,20 @@ def send(connections: Sequence[Any], data: Packed, timeout: float) -> List[Any]:
     return stalled
 
 
-def _send_all(sock: socket.socket, views: List[memoryview], timeout: float) -> None:
-    """sock.sendall of the pieces with a timeout (socket.timeout), leaving the socket blocking as rospy has it. One
-    non-blocking sendmsg() as a rule: a socket with a timeout of its own would cost a poll() before every send."""
+def _send_all(sock: socket.socket, data: Packed, timeout: float) -> None:
+    """sock.sendall of ``data`` with a timeout (socket.timeout), leaving the socket blocking as rospy has it. One
+    non-blocking send() (sendmsg() of pieces) as a rule: a socket with a timeout of its own would cost a poll() before
+    every send."""
+    if isinstance(data, bytes):
+        try:
+            sent = sock.send(data, socket.MSG_DONTWAIT)
+        except BlockingIOError:
+            sent = 0
+        if sent == len(data):
+            return
+        views = [memoryview(data)[sent:]]
+    else:
+        views = pieces(data)
     deadline = None
     while views:
         try:
