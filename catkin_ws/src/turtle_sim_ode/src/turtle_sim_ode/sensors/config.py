@@ -320,9 +320,8 @@ def _camera_config(link: str, sensor: Element, plugin: Element, warnings: List[s
     cutoff_max = read_number(
         params.get("pointCloudCutoffMax"), f"{what} <pointCloudCutoffMax>", defaults.cutoff_max, minimum=0.0
     )
-    width, height = _int(camera, "image/width", defaults.width, what), _int(
-        camera, "image/height", defaults.height, what
-    )
+    width = _int(camera, "image/width", defaults.width, what)
+    height = _int(camera, "image/height", defaults.height, what)
     if width * height > MAX_CAMERA_PIXELS:
         raise ModelError(f"{what} <image> {width}x{height} is over {MAX_CAMERA_PIXELS} pixels (2048x2048)")
 

@@ -30,18 +30,6 @@ from turtle_sim_ode.sensors.rays import world_geoms
 POSE_COLUMNS = 12  # a position and a rotation (row-major), from the first of them: in shape_row's and mesh_pose's rows
 
 
-def _matrices(quaternions: np.ndarray) -> np.ndarray:
-    """Rotation matrices (K, 3, 3) of unit quaternions (K, 4) (w, x, y, z), as models.builder.quat_matrix."""
-    w, x, y, z = quaternions.T
-    return np.stack(
-        (
-            (1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)),
-            (2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)),
-            (2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)),
-        )
-    ).transpose(2, 0, 1)
-
-
 def _placed(local: np.ndarray, at: int, positions: np.ndarray, rotations: np.ndarray) -> np.ndarray:
     """Copies of rows posed in their links (a position and a rotation from column ``at``) posed in the world by their
     links' ``positions`` (K, 3) and ``rotations`` (K, 3, 3)."""
@@ -99,7 +87,7 @@ class _View:
             return
         transforms = [model.link_transform(link) for link in self.links]
         positions = np.array([transform[0] for transform in transforms])
-        rotations = _matrices(np.array([transform[1] for transform in transforms]))
+        rotations = np.array([quat_matrix(quaternion) for _, quaternion in transforms])
         if len(self.rows):
             tables.append(_placed(self.rows, 1, positions[self.row_links], rotations[self.row_links]))
         if self.mesh_arrays:
