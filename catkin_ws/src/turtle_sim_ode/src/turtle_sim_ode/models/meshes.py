@@ -23,6 +23,8 @@ from xml.etree.ElementTree import Element
 import numpy
 
 from turtle_sim_ode.models.resources import ResourceError, ResourcePaths
+from turtle_sim_ode.physics.trimesh import TriMeshData
+from turtle_sim_ode.physics.trimesh import available as trimesh_available
 from turtle_sim_ode.models.text import ModelError, parse_xml
 from turtle_sim_ode.models.urdf import MAX_LENGTH, Mesh, RobotModel
 
@@ -329,10 +331,8 @@ def scaled_mesh(triangles: Triangles, scale: Sequence[float], what: str) -> Tupl
     return vertices, faces
 
 
-def mesh_arrays(triangles: Triangles, scale: Sequence[float], what: str) -> Tuple[Tuple, Tuple]:
-    """scaled_mesh as tuples, for ode.TriMeshData."""
-    vertices, faces = scaled_mesh(triangles, scale, what)
-    return tuple(map(tuple, vertices.tolist())), tuple(map(tuple, faces.tolist()))
+def _as_tuples(array: numpy.ndarray) -> Tuple:
+    return tuple(map(tuple, array.tolist()))
 
 
 # Resolved path -> its triangles, or the ModelError reading it gave (not read twice either way).
@@ -390,8 +390,11 @@ def load_meshes(robot: RobotModel, paths: Optional[ResourcePaths], base: Optiona
                 continue
             what = f"link '{link.name}' collision '{collision.name}' mesh '{geometry.uri}'"
             triangles = mesh_file(paths, geometry, base, what, cache)
-            vertices, faces = mesh_arrays(triangles, geometry.scale, what)
-            link.collisions[index] = replace(collision, geometry=replace(geometry, vertices=vertices, faces=faces))
+            vertices, faces = scaled_mesh(triangles, geometry.scale, what)
+            mesh = replace(geometry, vertices=_as_tuples(vertices), faces=_as_tuples(faces))
+            if robot.static and trimesh_available():  # meshes collide as trimeshes on static models only (builder)
+                mesh = replace(mesh, prepared=TriMeshData(vertices, faces))
+            link.collisions[index] = replace(collision, geometry=mesh)
 
 
 def uses_meshes(robot: RobotModel) -> bool:
