@@ -197,34 +197,43 @@ class Scene:
         """What a camera on ``camera_model`` draws now, its own model and the ground plane aside: the primitive
         table (N, STRIDE) and the meshes."""
         views = self._current(camera_model)
+        drawn_tables: List[np.ndarray] = []
+        drawn_meshes: List[MeshItem] = []
+        for index, (model, view) in enumerate(views):
+            if not view.links:
+                continue
+            tables: List[np.ndarray] = []
+            meshes: List[MeshItem] = []
+            try:
+                view.draw(model, tables, meshes)
+            except Exception as error:  # drawn from its collisions, from this rendering on
+                self._warnings.append(
+                    f"model '{model.name}' visuals cannot be drawn ({type(error).__name__}: {error}): the cameras "
+                    "draw its links from their collisions"
+                )
+                view = self._views[model] = _View.of_collisions(model)
+                views[index] = (model, view)
+                continue
+            drawn_tables += tables
+            drawn_meshes += meshes
         colours: Dict[ode.GeomObject, RGB] = {}
         hidden: Set[ode.GeomObject] = set()
         for _, view in views:
             colours.update(view.colours)
             hidden.update(view.hidden)
         rows: List[np.ndarray] = []
-        meshes: List[MeshItem] = []
+        geom_meshes: List[MeshItem] = []
         for geom in world_geoms(physics, camera_model):
             if geom in hidden:
                 continue
             colour = colours.get(geom, DEFAULT_COLOR)
             if isinstance(geom, MeshGeom):
-                meshes.append((mesh_pose(geom.getPosition(), geom.getRotation(), colour), geom.vertices, geom.faces))
+                geom_meshes.append((mesh_pose(geom.getPosition(), geom.getRotation(), colour), geom.vertices, geom.faces))
                 continue
             row = primitive_row(geom, colour)
             if row is not None:
                 rows.append(row)
-        tables = [np.array(rows).reshape(-1, STRIDE)]
-        for model, view in views:
-            try:
-                view.draw(model, tables, meshes)
-            except Exception as error:  # drawn from its collisions from the next rendering on
-                self._warnings.append(
-                    f"model '{model.name}' visuals cannot be drawn ({type(error).__name__}: {error}): the cameras "
-                    "draw its links from their collisions"
-                )
-                self._views[model] = _View.of_collisions(model)
-        return np.concatenate(tables), meshes
+        return np.concatenate([np.array(rows).reshape(-1, STRIDE)] + drawn_tables), geom_meshes + drawn_meshes
 
 
 def _files_named(visuals: List[Visual]) -> str:
