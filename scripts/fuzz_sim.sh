@@ -10,4 +10,6 @@ SOURCE_WORKSPACE="$PWD/catkin_ws" . scripts/lib/ros_env.sh
 echo "fuzz_sim: $examples examples a test, seed $seed"
 TURTLE_SIM_FUZZ_EXAMPLES="$examples" TURTLE_SIM_FUZZ_SEED="$seed" /usr/bin/python3 -m pytest -q -p no:cacheprovider \
   catkin_ws/src/turtle_sim_ode/test/unit/test_fuzz.py catkin_ws/src/turtle_sim_ode/test/unit/test_camera_fuzz.py \
+  catkin_ws/src/turtle_sim_ode/test/unit/test_mesh_fuzz.py catkin_ws/src/turtlesim/test/unit/test_turtlesim_fuzz.py \
+  catkin_ws/src/xacro/test/unit/test_sandbox_fuzz.py \
   --hypothesis-show-statistics
