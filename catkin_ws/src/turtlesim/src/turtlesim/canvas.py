@@ -46,14 +46,15 @@ class Canvas:
             return
         (c0, c1), (r0, r1) = columns, rows_span
         cols, rows = np.meshgrid(np.arange(c0, c1 + 1) + 0.5, np.arange(r0, r1 + 1) + 0.5)
-        dx, dy = x1 - x0, y1 - y0
-        length_sq = dx * dx + dy * dy
-        if 0.0 < length_sq < math.inf:  # a segment too long to measure (a teleport to 1e300 m) paints its start
-            t = np.clip(((cols - x0) * dx + (rows - y0) * dy) / length_sq, 0.0, 1.0)
-        else:
-            t = np.zeros_like(cols)
-        dist_sq = (cols - (x0 + t * dx)) ** 2 + (rows - (y0 + t * dy)) ** 2
-        mask = dist_sq <= radius * radius + 1e-9
+        with np.errstate(over="ignore", invalid="ignore"):  # far-off ends: infinities, no pixel
+            dx, dy = x1 - x0, y1 - y0
+            length_sq = dx * dx + dy * dy
+            if 0.0 < length_sq < math.inf:  # a segment too long to measure (a teleport to 1e300 m) paints its start
+                t = np.clip(((cols - x0) * dx + (rows - y0) * dy) / length_sq, 0.0, 1.0)
+            else:
+                t = np.zeros_like(cols)
+            dist_sq = (cols - (x0 + t * dx)) ** 2 + (rows - (y0 + t * dy)) ** 2
+            mask = dist_sq <= radius * radius + 1e-9
         if mask.any():
             self.pixels[r0 : r1 + 1, c0 : c1 + 1][mask] = colour
             self.version += 1

@@ -40,8 +40,13 @@ def finite(what: str, **values: float) -> None:
 
 
 def wrap_angle(theta: float) -> float:
-    """theta wrapped to [-pi, pi)."""
-    return theta - 2.0 * math.pi * math.floor((theta + math.pi) / (2.0 * math.pi))
+    """theta wrapped to [-pi, pi), as the original wraps it (theta - 2 pi floor((theta + pi) / 2 pi)); for angles so
+    large that this loses every digit (1e300 rad), with the exact remainder instead."""
+    wrapped = theta - 2.0 * math.pi * math.floor((theta + math.pi) / (2.0 * math.pi))
+    if -math.pi <= wrapped < math.pi:
+        return wrapped
+    remainder = math.fmod(theta + math.pi, 2.0 * math.pi)
+    return (remainder + 2.0 * math.pi if remainder < 0.0 else remainder) - math.pi
 
 
 @dataclass
