@@ -106,21 +106,24 @@ def refusal(expression: str) -> Optional[str]:
         return "not a Python expression (%s)" % error.msg
     except (ValueError, MemoryError, RecursionError) as error:  # NUL bytes, absurd nesting
         return "not a Python expression (%s)" % type(error).__name__
-    for node in ast.walk(tree):
+    nodes = list(ast.walk(tree))
+    for node in nodes:  # the constructs first, then names, then calls: the message names the outermost fault
         if isinstance(node, tuple(_NAMED)):
             return next(words for kind, words in _NAMED.items() if isinstance(node, kind))
         if not isinstance(node, _NODES):
             return "a %s" % type(node).__name__
+        if isinstance(node, ast.Constant) and isinstance(node.value, bytes):
+            return "a bytes literal"
+    for node in nodes:
         if isinstance(node, ast.Name) and node.id.startswith("_"):
             return "the name '%s' (names beginning with '_' are refused)" % node.id
         if isinstance(node, ast.Attribute) and (node.attr.startswith("_") or node.attr in REFUSED_ATTRIBUTES):
             return "the attribute '%s'" % node.attr
+    for node in nodes:
         if isinstance(node, ast.Call):
             why = _called_name(node.func)
             if why is not None:
                 return why
-        if isinstance(node, ast.Constant) and isinstance(node.value, bytes):
-            return "a bytes literal"
     return None
 
 
