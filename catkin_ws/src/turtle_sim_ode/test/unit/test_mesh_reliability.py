@@ -227,7 +227,7 @@ def test_an_unforeseen_exception_in_any_handler_is_answered_not_raised(api):
 def test_mesh_files_are_read_and_checked_before_the_world_lock_is_taken(api, tmp_path, monkeypatch):
     """A 30 MB ASCII STL of 320,000 facets (refused: over 200,000) and a 190,000-triangle binary STL (spawned): the
     world lock is never held while a file is read, and never longer than SPAWN_LOCK_BOUND_S (README: "Collision
-    meshes"; measured 0.2 ms for the large mesh, against 2.5 s before)."""
+    meshes"; measured 0.3 ms at most, against 2.5 s before)."""
     interface, lock, _ = api
     from gazebo_msgs.srv import SpawnModel
 
