@@ -115,7 +115,6 @@ class BadValues(unittest.TestCase):
             deadline=None,
             database=None,
             suppress_health_check=[HealthCheck.too_slow],
-            report_multiple_bugs=False,
         )
         @given(kind=st.sampled_from(["spawn", "teleport", "relative", "cmd_vel"]), a=values, b=values, c=values)
         def check(kind: str, a: float, b: float, c: float) -> None:

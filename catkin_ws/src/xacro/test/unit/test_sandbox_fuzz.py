@@ -33,7 +33,7 @@ FUZZ = settings(
     derandomize=SEED is None,
     deadline=None,
     database=None,
-    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much, HealthCheck.function_scoped_fixture],
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
 )
 ANSWER_WITHIN_S = 5.0
 MARK = "MARK"  # the file a hostile piece writes in the working directory if it runs
