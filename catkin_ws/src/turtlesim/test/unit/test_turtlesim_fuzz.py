@@ -9,25 +9,16 @@ CI runs a bounded number of examples with a fixed seed (derandomize); scripts/fu
 from __future__ import annotations
 
 import math
-import os
 import sys
 import time
 from typing import List, Tuple
 
-from hypothesis import HealthCheck, event, given, seed, settings
+from hypothesis import event, given
 from hypothesis import strategies as st
+from workspace_testing.fuzz import fuzz
 
 from turtlesim.world import DEFAULT_BACKGROUND, UPDATE_PERIOD, WORLD_SIZE, World, WorldError
 
-EXAMPLES = int(os.environ.get("TURTLE_SIM_FUZZ_EXAMPLES", "60"))
-SEED = os.environ.get("TURTLE_SIM_FUZZ_SEED")
-FUZZ = settings(
-    max_examples=EXAMPLES,
-    derandomize=SEED is None,
-    deadline=None,
-    database=None,
-    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
-)
 ANSWER_WITHIN_S = 5.0
 
 hostile = st.sampled_from([math.nan, math.inf, -math.inf, 1e308, -1e308, 1.7e308, 5e-324, -0.0, 1e150, 2**53])
@@ -78,8 +69,7 @@ def assert_sane(world: World) -> None:
         assert -math.pi <= turtle.theta <= math.pi, (turtle.name, state)
 
 
-@FUZZ
-@seed(int(SEED or 0))
+@fuzz(60)
 @given(sequence=st.lists(requests, min_size=1, max_size=25))
 def test_generated_requests_are_refused_cleanly_or_obeyed_and_every_turtle_stays_finite(sequence: List[Tuple]) -> None:
     world = World()

@@ -38,14 +38,11 @@ EXPAND = textwrap.dedent(
 )
 
 
-def expand(mode: str, path: Path, *args: str, cwd: Path = PACKAGE_ROOT) -> subprocess.CompletedProcess:
-    env = dict(
-        os.environ,
-        ROS_PACKAGE_PATH=os.pathsep.join(str(p) for p in FIXTURE_PACKAGES),
-        PYTHONPATH=str(PACKAGE_ROOT / "src"),
-    )
+def python(argv: list, cwd: Path, **environ: str) -> subprocess.CompletedProcess:
+    """/usr/bin/python3 with ``argv``, the drop-in's src on PYTHONPATH and ``environ`` added."""
+    env = dict(os.environ, PYTHONPATH=str(PACKAGE_ROOT / "src"), **environ)
     return subprocess.run(
-        ["/usr/bin/python3", "-c", EXPAND, mode, str(path)] + list(args),
+        ["/usr/bin/python3"] + argv,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         universal_newlines=True,
@@ -53,19 +50,15 @@ def expand(mode: str, path: Path, *args: str, cwd: Path = PACKAGE_ROOT) -> subpr
         cwd=str(cwd),
         timeout=60,
     )
+
+
+def expand(mode: str, path: Path, *args: str) -> subprocess.CompletedProcess:
+    packages = os.pathsep.join(str(p) for p in FIXTURE_PACKAGES)
+    return python(["-c", EXPAND, mode, str(path)] + list(args), PACKAGE_ROOT, ROS_PACKAGE_PATH=packages)
 
 
 def run_command(path: Path, cwd: Path) -> subprocess.CompletedProcess:
-    env = dict(os.environ, PYTHONPATH=str(PACKAGE_ROOT / "src"))
-    return subprocess.run(
-        ["/usr/bin/python3", str(PACKAGE_ROOT / "xacro"), str(path)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        universal_newlines=True,
-        env=env,
-        cwd=str(cwd),
-        timeout=60,
-    )
+    return python([str(PACKAGE_ROOT / "xacro"), str(path)], cwd)
 
 
 @pytest.mark.parametrize(

@@ -15,8 +15,9 @@ import time
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, event, given, seed, settings
+from hypothesis import event, given
 from hypothesis import strategies as st
+from workspace_testing.fuzz import fuzz
 
 PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 if (PACKAGE_ROOT / "CATKIN_IGNORE").exists():  # scripts/lib/dropins.py: the system's xacro is used here
@@ -26,15 +27,6 @@ sys.path.insert(0, str(PACKAGE_ROOT / "src"))
 import xacro_dropin  # noqa: E402
 from xacro_dropin import sandbox  # noqa: E402
 
-EXAMPLES = int(os.environ.get("TURTLE_SIM_FUZZ_EXAMPLES", "150"))
-SEED = os.environ.get("TURTLE_SIM_FUZZ_SEED")
-FUZZ = settings(
-    max_examples=EXAMPLES,
-    derandomize=SEED is None,
-    deadline=None,
-    database=None,
-    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
-)
 ANSWER_WITHIN_S = 5.0
 MARK = "MARK"  # the file a hostile piece writes in the working directory if it runs
 
@@ -126,8 +118,7 @@ def outcome(call):
     return result
 
 
-@FUZZ
-@seed(int(SEED or 0))
+@fuzz(150)
 @given(expression=expressions)
 def test_generated_expressions_are_evaluated_as_upstream_or_refused_and_never_run_code(
     pypi, expression: str, tmp_path_factory
