@@ -256,7 +256,7 @@ class GazeboApi:
         try:
             with self._lock:
                 self._apply_model_state(state)
-        except (WorldError, ValueError) as error:
+        except (WorldError, ValueError, ArithmeticError) as error:  # numbers too large for a step: a warning too
             logwarn_every(5.0, "set_model_state", "/gazebo/set_model_state: %s" % error)
 
     def _get_model_properties(self, request, response) -> None:
@@ -295,7 +295,7 @@ class GazeboApi:
         try:
             with self._lock:
                 self._apply_link_state(state)
-        except (WorldError, ValueError) as error:
+        except (WorldError, ValueError, ArithmeticError) as error:  # numbers too large for a step: a warning too
             logwarn_every(5.0, "set_link_state", "/gazebo/set_link_state: %s" % error)
 
     def _get_link_properties(self, request, response) -> None:
