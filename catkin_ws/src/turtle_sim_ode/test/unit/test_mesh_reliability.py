@@ -79,6 +79,17 @@ def test_a_y_up_collada_wall_in_inches_stands_where_gazebo_puts_it():
     assert ranges[beam(config, angle)] == pytest.approx((near_face - x) / math.cos(angle), abs=0.01)
 
 
+def test_stl_and_obj_are_read_as_gazebo_reads_them():
+    """STLLoader::ReadBinary reads the header's count of facets and stops: bytes after them are ignored.
+    OBJLoader::Load (tinyobjloader, triangulate = true): a quad is two triangles fanned from its first corner,
+    negative indices count back from the last vertex, and nothing is scaled or turned (metres, Z up)."""
+    triangles = box_triangles((0.0, 0.0, 0.0), (1.0, 2.0, 3.0))
+    trailing = read_mesh(binary_stl(triangles) + b"trailing bytes after the facets", "box.stl")
+    assert trailing.shape == (12, 3, 3) and trailing.reshape(-1, 3).max(axis=0).tolist() == [1.0, 2.0, 3.0]
+    quad = read_mesh(b"v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf -4 -3 -2 -1\n", "quad.obj")
+    assert quad.tolist() == [[[0, 0, 0], [2, 0, 0], [2, 1, 0]], [[0, 0, 0], [2, 1, 0], [0, 1, 0]]]
+
+
 # --- bad meshes: named refusals, never an escaping exception ------------------------------------------------------
 @pytest.mark.parametrize("name, text, words", BROKEN, ids=[case[0] for case in BROKEN])
 def test_broken_meshes_are_refused_naming_the_file_and_what_is_wrong(name, text, words):
