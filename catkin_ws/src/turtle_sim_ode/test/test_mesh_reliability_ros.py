@@ -123,7 +123,9 @@ class MeshReliability(unittest.TestCase):
         with open(os.path.join(self.folder, name), "wb") as mesh_file:
             mesh_file.write(data)
         started = time.monotonic()
-        result = self.spawn_sdf_model(model, model_with("model://fuzz_meshes/" + name, as_visual, model), "", pose(1.0, 0, 0.2), "")
+        result = self.spawn_sdf_model(
+            model, model_with("model://fuzz_meshes/" + name, as_visual, model), "", pose(1.0, 0, 0.2), ""
+        )
         self.assertLess(time.monotonic() - started, self.limit)
         return result
 

@@ -88,7 +88,9 @@ def objs(draw: Callable) -> Tuple[str, bytes]:
     lines = []
     for triangle in triangles:
         for vertex in triangle:
-            lines.append("v " + " ".join(draw(number_text) if draw(st.integers(0, 12)) == 0 else repr(c) for c in vertex))
+            lines.append(
+                "v " + " ".join(draw(number_text) if draw(st.integers(0, 12)) == 0 else repr(c) for c in vertex)
+            )
     for index in range(len(triangles)):
         corners = [str(3 * index + k + 1) for k in range(3)]
         if draw(st.integers(0, 8)) == 0:
@@ -96,7 +98,9 @@ def objs(draw: Callable) -> Tuple[str, bytes]:
         if draw(st.integers(0, 10)) == 0:
             corners = [c + "/1/1" for c in corners] + draw(st.lists(index_text, max_size=3))
         lines.append("f " + " ".join(corners))
-    lines += draw(st.lists(st.sampled_from(["vt 0 0", "vn 0 0 1", "o part", "# comment", "f", "v", "usemtl x"]), max_size=3))
+    lines += draw(
+        st.lists(st.sampled_from(["vt 0 0", "vn 0 0 1", "o part", "# comment", "f", "v", "usemtl x"]), max_size=3)
+    )
     return "mesh.obj", "\n".join(lines).encode()
 
 
@@ -131,7 +135,9 @@ def colladas(draw: Callable) -> Tuple[str, bytes]:
         text = draw(st.sampled_from([text.replace("<node ", "<node><node><node ", 1), text[: len(text) // 2]]))
         text = text.replace("</node>", "</node></node></node>", 1) if "<node><node>" in text else text
     if draw(st.integers(0, 15)) == 0:
-        text = text.replace("<triangles", "<polylist", 1).replace("</triangles>", "<vcount>%s</vcount></polylist>" % " ".join(draw(st.lists(index_text, max_size=14))), 1)
+        text = text.replace("<triangles", "<polylist", 1).replace(
+            "</triangles>", "<vcount>%s</vcount></polylist>" % " ".join(draw(st.lists(index_text, max_size=14))), 1
+        )
     return "mesh.dae", text.encode()
 
 
@@ -187,7 +193,9 @@ def test_generated_meshes_spawned_before_a_camera_never_stop_the_world(scratch: 
     package_files = listing(PACKAGE_ROOT / "test")
     sim = Simulation()
     sim.resources = ResourcePaths({"scratch": str(scratch)}, [], [str(scratch)])
-    urdf = CAMERA_URDF.format(kind="depth", plugin="libgazebo_ros_openni_kinect.so", fov=1.047, width=24, height=18, z=0.1)
+    urdf = CAMERA_URDF.format(
+        kind="depth", plugin="libgazebo_ros_openni_kinect.so", fov=1.047, width=24, height=18, z=0.1
+    )
     sim.spawn_urdf("cam", urdf, (0, 0, 0.05, 0, 0, 0))
     camera = CameraSensor(sim.physics, sim.models["cam"], sim.plugins["cam"].cameras[0])
     started = time.monotonic()

@@ -129,7 +129,9 @@ def test_a_broken_visual_mesh_warns_once_naming_model_link_file_and_its_link_is_
 def camera_in_scratch(tmp_path: Path) -> Simulation:
     sim = Simulation()
     sim.resources = scratch_paths(tmp_path)
-    urdf = CAMERA_URDF.format(kind="depth", plugin="libgazebo_ros_openni_kinect.so", fov=1.047, width=65, height=49, z=0.11)
+    urdf = CAMERA_URDF.format(
+        kind="depth", plugin="libgazebo_ros_openni_kinect.so", fov=1.047, width=65, height=49, z=0.11
+    )
     sim.spawn_urdf("cam", urdf, (0, 0, 0.05, 0, 0, 0))
     return sim
 
@@ -279,7 +281,9 @@ def model_tree(tmp_path: Path, includes: dict) -> ResourcePaths:
 
 
 def world_including(name: str):
-    return parse_sdf_world(f'<sdf version="1.6"><world name="w"><include><uri>model://{name}</uri></include></world></sdf>')
+    return parse_sdf_world(
+        f'<sdf version="1.6"><world name="w"><include><uri>model://{name}</uri></include></world></sdf>'
+    )
 
 
 @pytest.mark.parametrize(
@@ -307,6 +311,7 @@ def test_a_model_including_another_without_a_cycle_is_still_refused_as_unsupport
 
 
 def test_the_fixture_world_still_resolves(tmp_path):
-    models, _ = resolve_includes(parse_sdf_world((MESH_PACKAGE / "worlds" / "mesh_room.world").read_text()), fixture_paths())
+    models, _ = resolve_includes(
+        parse_sdf_world((MESH_PACKAGE / "worlds" / "mesh_room.world").read_text()), fixture_paths()
+    )
     assert models
-

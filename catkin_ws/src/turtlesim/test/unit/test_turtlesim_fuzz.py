@@ -97,4 +97,3 @@ def test_generated_requests_are_refused_cleanly_or_obeyed_and_every_turtle_stays
     world.update(now)
     assert world.take_faults() == []
     assert_sane(world)
-

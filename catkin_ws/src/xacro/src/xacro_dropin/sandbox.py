@@ -12,12 +12,13 @@ lists, tuples, dicts, sets), names of properties and args, arithmetic, compariso
 generator expressions, `:=`, f-strings, starred arguments, names and attributes beginning with `_`, calls of
 anything else) is refused with a SandboxError naming the file, the expression and the construct. An allowed
 expression is then evaluated with no builtins but those listed, and with `**`, `*`, `<<` and `range` bounded so that
-no expression can take the machine's memory or minutes of its time (`10**10**10`, `'a' * 10**12`).
+no expression can take the machine's memory or minutes of its time (`10**10**10`, `'a' * 10**12`, `'%0999999999d' % 1`).
 """
 from __future__ import annotations
 
 import ast
 import math
+import re
 from typing import Callable, Dict, Optional
 
 # The builtins xacro 2.x exposes (globally or under `python.`), less those that reach beyond values: `type`, `vars`,
@@ -31,12 +32,13 @@ ALLOWED_BUILTINS = {
     )
 }  # fmt: skip
 ALLOWED_FUNCTIONS = set(ALLOWED_BUILTINS) | {"range"} | {name for name in dir(math) if not name.startswith("_")}
-# Methods of str, list, tuple and dict that compute a value (no format/format_map: they reach attributes by text).
+# Methods of str, list, tuple and dict whose results are no larger than what they are called on (no format/format_map:
+# they reach attributes by text; no join, replace, center, ljust, rjust or zfill: they multiply sizes).
 ALLOWED_METHODS = {
-    "capitalize", "casefold", "center", "count", "endswith", "find", "index", "isalnum", "isalpha", "isdigit",
-    "islower", "isnumeric", "isspace", "isupper", "join", "ljust", "lower", "lstrip", "partition", "replace",
-    "rfind", "rindex", "rjust", "rpartition", "rsplit", "rstrip", "split", "splitlines", "startswith", "strip",
-    "swapcase", "title", "upper", "zfill", "get", "keys", "values", "items", "copy",
+    "capitalize", "casefold", "count", "endswith", "find", "index", "isalnum", "isalpha", "isdigit", "islower",
+    "isnumeric", "isspace", "isupper", "lower", "lstrip", "partition", "rfind", "rindex", "rpartition", "rsplit",
+    "rstrip", "split", "splitlines", "startswith", "strip", "swapcase", "title", "upper", "get", "keys", "values",
+    "items", "copy",
 }  # fmt: skip
 # Namespaces whose every public member may be called: xacro's own (xacro.arg, xacro.load_yaml, ...) and math; of
 # `python.` only the builtins above.
@@ -71,7 +73,9 @@ if hasattr(ast, "NamedExpr"):
 
 # The largest results the bounded operations make: far beyond any robot description's numbers and strings.
 MAX_POWER_BITS = 65536
-MAX_SEQUENCE_ITEMS = 10_000_000
+MAX_SEQUENCE_ITEMS = 1_000_000
+# A %-format's width or precision beyond this many digits would make a huge string ('%0999999999d' % 1).
+MAX_FORMAT_WIDTH_DIGITS = 6
 MAX_RANGE = 1_000_000
 _GUARD = "_xacro_sandbox_operation"  # its name begins with '_': no checked expression can name it
 
@@ -140,13 +144,17 @@ def check(expression: str, filename: str) -> None:
 
 
 def _bounded(operation: str, left: object, right: object) -> object:
-    """``left ** right``, ``left * right`` or ``left << right``, refused (SandboxError) where the result would be
+    """``left ** right``, ``left * right``, ``left % right`` or ``left << right``, refused (SandboxError) where the result would be
     huge; otherwise exactly what Python gives."""
     if operation == "pow":
         if isinstance(left, int) and isinstance(right, int) and abs(left) > 1 and right > 0:
             if right * max(abs(left).bit_length() - 1, 1) > MAX_POWER_BITS:
                 raise SandboxError("%d ** %d is too large to evaluate" % (left, right))
-        return left ** right  # type: ignore[operator]
+        return left**right  # type: ignore[operator]
+    if operation == "mod":
+        if isinstance(left, str) and re.search(r"\d{%d,}" % (MAX_FORMAT_WIDTH_DIGITS + 1), left):
+            raise SandboxError("a %%-format with a width of more than %d digits is too large" % MAX_FORMAT_WIDTH_DIGITS)
+        return left % right  # type: ignore[operator]
     if operation == "lshift":
         if isinstance(right, int) and right > MAX_POWER_BITS:
             raise SandboxError("a shift by %d bits is too large to evaluate" % right)
@@ -170,9 +178,9 @@ def bounded_range(original: Callable = range) -> Callable:
 
 
 class _Bounded(ast.NodeTransformer):
-    """`a ** b`, `a * b`, `a << b` as calls of _bounded."""
+    """`a ** b`, `a * b`, `a % b`, `a << b` as calls of _bounded."""
 
-    OPERATIONS = {ast.Pow: "pow", ast.Mult: "mult", ast.LShift: "lshift"}
+    OPERATIONS = {ast.Pow: "pow", ast.Mult: "mult", ast.Mod: "mod", ast.LShift: "lshift"}
 
     def visit_BinOp(self, node: ast.BinOp) -> ast.AST:
         self.generic_visit(node)
@@ -205,7 +213,9 @@ def sandbox_xacro(xacro, substitution_args) -> None:
     sa = substitution_args
     needed = ("_DictWrapper", "_eval_arg", "_eval_dirname", "_eval_dict", "convert_value")
     if not callable(getattr(xacro, "safe_eval", None)) or not all(hasattr(sa, name) for name in needed):
-        raise RuntimeError("%s has no safe_eval/_eval to replace: not the PyPI xacro this drop-in was written for" % xacro)
+        raise RuntimeError(
+            "%s has no safe_eval/_eval to replace: not the PyPI xacro this drop-in was written for" % xacro
+        )
 
     def current_file() -> str:
         stack = getattr(xacro, "filestack", None) or ["?"]

@@ -48,8 +48,8 @@ hostile = st.sampled_from(
         "{open('MARK', 'w') for _ in [1]}",
         "list(open('MARK', 'w') for _ in [1])",
         "open('MARK', 'w')",
-        "exec('open(\"MARK\", \"w\")')",
-        "list(map(exec, ['open(\"MARK\", \"w\")']))",
+        'exec(\'open("MARK", "w")\')',
+        'list(map(exec, [\'open("MARK", "w")\']))',
         "__import__('os').system('touch MARK')",
         "().__class__.__base__.__subclasses__()",
         "getattr(1, 'real')",
@@ -61,6 +61,9 @@ hostile = st.sampled_from(
         "[1] * 10**9",
         "1 << 10**9",
         "range(10**12)",
+        "'%0999999999d' % 1",
+        "'x'.zfill(10**9)",
+        "('x' * 10**6).replace('', 'y' * 10**6)",
         "sum(range(10**11))",
         "(x := 1)",
         "f'{1}'",
@@ -80,8 +83,9 @@ def combine(children: st.SearchStrategy) -> st.SearchStrategy:
         children.map(lambda c: "-(%s)" % c),
         st.tuples(children, children, children).map(lambda t: "(%s if %s else %s)" % t),
         st.tuples(children, children).map(lambda t: "[%s, %s][0]" % t),
-        st.tuples(st.sampled_from(["max", "min", "abs", "str", "float", "round", "len", "sorted", "python.sum"]), children)
-        .map(lambda t: "%s(%s)" % t),
+        st.tuples(
+            st.sampled_from(["max", "min", "abs", "str", "float", "round", "len", "sorted", "python.sum"]), children
+        ).map(lambda t: "%s(%s)" % t),
     )
 
 

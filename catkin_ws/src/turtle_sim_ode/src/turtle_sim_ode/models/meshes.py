@@ -5,7 +5,8 @@ them, and ``mesh_file`` and ``scaled_mesh``, which the cameras read visual meshe
 The files are read as Gazebo classic reads them (gazebo/common/STLLoader.cc, OBJLoader.cc, ColladaLoader.cc): an STL
 or OBJ as it is, in metres; a Collada file with its <unit meter> and node transforms applied but its <up_axis>
 ignored (ColladaLoader::Load reads only <unit> from <asset>): a file marked Y_UP keeps its axes, its Z is up, as in
-Gazebo (TurtleBot3's Y_UP walls stand there as their Z says). Whatever a file holds, reading it either gives finite triangles or raises ModelError naming the file and what is wrong in it.
+Gazebo (TurtleBot3's Y_UP walls stand there as their Z says). Whatever a file holds, reading it either gives finite
+triangles or raises ModelError naming the file and what is wrong in it.
 
 numpy-stl (Debian's python3-stl) reads a 20,000-triangle binary STL in about 1 ms. pyassimp (Debian's
 python3-pyassimp 5.2.5) would read all three formats, but crashes the process (SIGSEGV) on any STL on Debian 12, and
@@ -23,10 +24,10 @@ from xml.etree.ElementTree import Element
 import numpy
 
 from turtle_sim_ode.models.resources import ResourceError, ResourcePaths
-from turtle_sim_ode.physics.trimesh import TriMeshData
-from turtle_sim_ode.physics.trimesh import available as trimesh_available
 from turtle_sim_ode.models.text import ModelError, parse_xml
 from turtle_sim_ode.models.urdf import MAX_LENGTH, Mesh, RobotModel
+from turtle_sim_ode.physics.trimesh import TriMeshData
+from turtle_sim_ode.physics.trimesh import available as trimesh_available
 
 # More triangles than any collision mesh needs; more would cost seconds to build and every step after.
 MAX_TRIANGLES = 200_000
@@ -80,7 +81,7 @@ def _obj(data: bytes, what: str) -> Triangles:
                 position = index - 1 if index > 0 else len(vertices) + index
                 if index == 0 or not 0 <= position < len(vertices):
                     raise ModelError(
-                        f"{what}: OBJ line {number}: face index {shown_number(index)} refers to a vertex that does "
+                        f"{what}: OBJ line {number}: face index {_shown_number(index)} refers to a vertex that does "
                         f"not exist ({len(vertices)} so far)"
                     )
                 indices.append(position)
@@ -92,7 +93,7 @@ def _obj(data: bytes, what: str) -> Triangles:
     return _gather(numpy.array(vertices, dtype=numpy.float64).reshape(-1, 3), faces, what)
 
 
-def shown_number(value: float) -> str:
+def _shown_number(value: float) -> str:
     """A number as a message shows it: long ones shortened."""
     text = str(value)
     return text if len(text) <= 24 else text[:10] + "..." + text[-10:]
@@ -127,19 +128,23 @@ def _numbers(element: Optional[Element], what: str) -> List[float]:
     try:
         return [float(value) for value in (element.text or "").split()]
     except ValueError as error:
-        raise ModelError(f"{what}: Collada <{_local(element.tag)}> holds a value that is not a number ({error})") from None
+        raise ModelError(
+            f"{what}: Collada <{_local(element.tag)}> holds a value that is not a number ({error})"
+        ) from None
 
 
 def _indices(element: Optional[Element], what: str) -> List[int]:
     """Whole numbers >= 0 (<p>, <vcount>): anything else is refused naming the tag."""
     if element is None:
         return []
-    words = (element.text or "").split()
-    try:
-        values = [int(word) for word in words]
-    except ValueError:
-        bad = next(word for word in words if not word.lstrip("+-").isdigit())
-        raise ModelError(f"{what}: Collada <{_local(element.tag)}> holds {bad[:24]!r}, not a whole number") from None
+    values = []
+    for word in (element.text or "").split():
+        try:
+            values.append(int(word))
+        except ValueError:
+            raise ModelError(
+                f"{what}: Collada <{_local(element.tag)}> holds {word[:24]!r}, not a whole number"
+            ) from None
     if values and min(values) < 0:
         raise ModelError(f"{what}: Collada <{_local(element.tag)}> holds the negative index {min(values)}")
     return values
@@ -154,7 +159,7 @@ def _whole_attribute(element: Element, name: str, default: int, what: str, low: 
         value = None
     if value is None or not low <= value <= high:
         raise ModelError(
-            f"{what}: Collada <{_local(element.tag)} {name}=\"{text[:24]}\"> is not a whole number from {low} to {high}"
+            f'{what}: Collada <{_local(element.tag)} {name}="{text[:24]}"> is not a whole number from {low} to {high}'
         )
     return value
 
@@ -168,7 +173,7 @@ def _unit_meter(asset: Optional[Element], what: str) -> float:
     except ValueError:
         meter = math.nan
     if not (math.isfinite(meter) and meter > 0):
-        raise ModelError(f"{what}: Collada <unit meter=\"{text[:24]}\"> is not a number > 0")
+        raise ModelError(f'{what}: Collada <unit meter="{text[:24]}"> is not a number > 0')
     return meter
 
 
@@ -306,7 +311,9 @@ def read_mesh(data: bytes, name: str) -> Triangles:
         raise
     except (ArithmeticError, ValueError, IndexError, KeyError, TypeError, MemoryError) as error:
         # What the checks above did not foresee still names the file and the fault, never escapes as it is.
-        raise ModelError(f"mesh '{name}': malformed {extension[1:].upper()} file ({type(error).__name__}: {error})") from None
+        raise ModelError(
+            f"mesh '{name}': malformed {extension[1:].upper()} file ({type(error).__name__}: {error})"
+        ) from None
     if len(triangles) == 0:
         raise ModelError(f"mesh '{name}' has no triangles")
     if len(triangles) > MAX_TRIANGLES:
@@ -339,7 +346,9 @@ def _as_tuples(array: numpy.ndarray) -> Tuple:
 MeshFiles = Dict[str, Union[Triangles, ModelError]]
 
 
-def mesh_file(paths: Optional[ResourcePaths], mesh: Mesh, base: Optional[str], what: str, cache: MeshFiles) -> Triangles:
+def mesh_file(
+    paths: Optional[ResourcePaths], mesh: Mesh, base: Optional[str], what: str, cache: MeshFiles
+) -> Triangles:
     """The triangles of ``mesh``'s file, read through ``paths`` (relative URIs against ``base``) unless ``cache``
     has them; ResourceError or ModelError naming ``what`` or the file if it cannot be read."""
     if paths is None:

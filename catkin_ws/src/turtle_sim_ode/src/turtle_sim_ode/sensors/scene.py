@@ -228,7 +228,9 @@ class Scene:
                 continue
             colour = colours.get(geom, DEFAULT_COLOR)
             if isinstance(geom, MeshGeom):
-                geom_meshes.append((mesh_pose(geom.getPosition(), geom.getRotation(), colour), geom.vertices, geom.faces))
+                geom_meshes.append(
+                    (mesh_pose(geom.getPosition(), geom.getRotation(), colour), geom.vertices, geom.faces)
+                )
                 continue
             row = primitive_row(geom, colour)
             if row is not None:
