@@ -171,7 +171,9 @@ def scratch(tmp_path_factory) -> Path:
 
 
 def listing(folder: Path) -> List[Tuple[str, int, float]]:
-    return sorted((str(p), p.stat().st_size, p.stat().st_mtime) for p in folder.rglob("*") if p.is_file())
+    """The files under ``folder`` with size and time (Python's own bytecode caches aside)."""
+    files = (p for p in folder.rglob("*") if p.is_file() and "__pycache__" not in p.parts)
+    return sorted((str(p), p.stat().st_size, p.stat().st_mtime) for p in files)
 
 
 def model_with(uri: str, as_visual: bool) -> str:
