@@ -6,7 +6,7 @@ import argparse
 from typing import Optional, Sequence
 
 import rospy
-from python_qt_binding.QtCore import Qt, QTimer
+from python_qt_binding.QtCore import QSize, Qt, QTimer
 from python_qt_binding.QtWidgets import (
     QAbstractItemView, QFileDialog, QHBoxLayout, QHeaderView, QLabel, QMessageBox, QPushButton, QSpinBox, QSplitter,
     QTableView, QVBoxLayout, QWidget, QCheckBox,
@@ -112,6 +112,9 @@ class ConsoleWidget(QWidget):
         self._timer.timeout.connect(self.drain)
         self._timer.start(DRAIN_INTERVAL_MS)
         self.update_status()
+
+    def sizeHint(self) -> QSize:
+        return QSize(1000, 600)  # room for the Message column next to the six others
 
     def drain(self) -> int:
         """Moves the queued messages into the table in one batch; returns how many."""

@@ -19,7 +19,7 @@ DEFAULT_X_WIDTH = 10.0  # s shown when autoscroll is on, rqt_plot's default x ra
 
 
 class PlotCanvas(pyqtgraph.PlotWidget):
-    """Curves by name over time. With autoscroll the x range keeps its width and ends at the newest point; the y
+    """Curves by name over time. With autoscroll the x range keeps its width and follows the newest point; the y
     range grows to hold what is visible and never shrinks until clear() (rqt_plot's SCALE_EXTEND | SCALE_VISIBLE)."""
 
     def __init__(self, parent=None) -> None:
@@ -65,11 +65,13 @@ class PlotCanvas(pyqtgraph.PlotWidget):
         """Moves the axes after new data: x to the newest point (autoscroll), y to hold the visible values."""
         (x_low, x_high), _ = self.plotItem.viewRange()
         if self.autoscroll:
-            newest = [s.x()[-1] for s in series.values() if len(s)]
-            if newest:
+            filled = [s for s in series.values() if len(s)]
+            if filled:
+                # the range keeps its width and ends at the newest point, but starts no earlier than the oldest
+                # one: curves first grow from the left edge, then scroll
                 width = x_high - x_low
-                x_high = max(newest)
-                x_low = x_high - width
+                x_low = max(max(s.x()[-1] for s in filled) - width, min(s.x()[0] for s in filled))
+                x_high = x_low + width
                 self.setXRange(x_low, x_high, padding=0)
         for values in series.values():
             visible = values.y()[np.searchsorted(values.x(), x_low) : np.searchsorted(values.x(), x_high, "right")]

@@ -102,7 +102,13 @@ def test_pause_freezes_the_plot_and_resume_shows_what_came_meanwhile(make_widget
 
 def test_autoscroll_follows_the_newest_point_with_a_ten_second_width(make_widget, ros_time):
     widget = make_widget("/turtle1/cmd_vel/linear/x")
-    for second in range(30):
+    for second in range(1, 4):
+        ros_time[0] = 100.0 + second
+        widget.subscriptions._on_message(Twist(), "/turtle1/cmd_vel")
+    widget.update_plot()
+    (low, high), _ = widget.canvas.plotItem.viewRange()
+    assert (low, high) == pytest.approx((1.0, 11.0))  # the first point at the left edge until the window is full
+    for second in range(4, 30):
         ros_time[0] = 100.0 + second
         widget.subscriptions._on_message(Twist(), "/turtle1/cmd_vel")
     widget.update_plot()
