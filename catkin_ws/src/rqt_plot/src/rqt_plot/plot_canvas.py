@@ -2,7 +2,7 @@
 (Qt5Agg) 14 ms on this machine (README, "Limits"), which is what keeps the 25 Hz refresh smooth."""
 from __future__ import annotations
 
-from typing import Dict
+from typing import Dict, Iterable, Tuple
 
 import numpy as np
 from python_qt_binding.QtCore import Qt  # imported first: pyqtgraph then uses the same binding (PyQt5)
@@ -52,29 +52,37 @@ class PlotCanvas(pyqtgraph.PlotWidget):
     def curve_names(self):
         return list(self._curves)
 
-    def show_series(self, name: str, series: Series) -> None:
-        if name in self._curves:
-            self._curves[name].setData(series.x(), series.y())
-
     def clear_values(self) -> None:
         for item in self._curves.values():
             item.setData([], [])
         self._y_range = None
 
-    def follow(self, series: Dict[str, Series]) -> None:
-        """Moves the axes after new data: x to the newest point (autoscroll), y to hold the visible values."""
+    def show(self, series: Dict[str, Series], changed: Iterable[str]) -> None:
+        """Draws the curves in `changed` after new data and moves the axes: x to the newest point (autoscroll),
+        y to hold the visible values. With autoscroll only the visible stretch of a curve is handed to pyqtgraph,
+        so a frame costs the same with 20,000 points kept as with 600; without, the whole series (to pan over)."""
         (x_low, x_high), _ = self.plotItem.viewRange()
-        if self.autoscroll:
-            filled = [s for s in series.values() if len(s)]
-            if filled:
-                # the range keeps its width and ends at the newest point, but starts no earlier than the oldest
-                # one: curves first grow from the left edge, then scroll
-                width = x_high - x_low
-                x_low = max(max(s.x()[-1] for s in filled) - width, min(s.x()[0] for s in filled))
-                x_high = x_low + width
-                self.setXRange(x_low, x_high, padding=0)
-        for values in series.values():
-            visible = values.y()[np.searchsorted(values.x(), x_low) : np.searchsorted(values.x(), x_high, "right")]
+        filled = [s for s in series.values() if len(s)]
+        if self.autoscroll and filled:
+            # the range keeps its width and ends at the newest point, but starts no earlier than the oldest one:
+            # curves first grow from the left edge, then scroll
+            width = x_high - x_low
+            x_low = max(max(s.x()[-1] for s in filled) - width, min(s.x()[0] for s in filled))
+            x_high = x_low + width
+            self.setXRange(x_low, x_high, padding=0)
+        for name in changed:
+            if name in self._curves and name in series:
+                first, end = self._visible(series[name], x_low, x_high)
+                if self.autoscroll:  # one point either side, so that lines run to the edges
+                    first, end = max(first - 1, 0), min(end + 1, len(series[name]))
+                else:
+                    first, end = 0, len(series[name])
+                # fewer than two points are not drawn: pyqtgraph 0.13.1 fails to paint a line of one
+                x, y = (series[name].x()[first:end], series[name].y()[first:end]) if end - first > 1 else ([], [])
+                self._curves[name].setData(x, y)
+        for values in filled:
+            first, end = self._visible(values, x_low, x_high)
+            visible = values.y()[first:end]
             finite = visible[np.isfinite(visible)]
             if len(finite):
                 low, high = float(finite.min()), float(finite.max())
@@ -85,3 +93,8 @@ class PlotCanvas(pyqtgraph.PlotWidget):
             low, high = self._y_range
             margin = 0.05 * (high - low) if high > low else 0.5
             self.setYRange(low - margin, high + margin, padding=0)
+
+    @staticmethod
+    def _visible(values: Series, x_low: float, x_high: float) -> Tuple[int, int]:
+        """Index range of the points with x in [x_low, x_high] (x is sorted as it arrives)."""
+        return int(np.searchsorted(values.x(), x_low)), int(np.searchsorted(values.x(), x_high, "right"))

@@ -131,11 +131,8 @@ class PlotWidget(QWidget):
         self._unshown.update(self.window.drain())
         if self.pause_button.isChecked() or not self._unshown:
             return
-        for name in self._unshown:
-            if name in self.window.series:
-                self.canvas.show_series(name, self.window.series[name])
+        self.canvas.show(self.window.series, self._unshown)
         self._unshown.clear()
-        self.canvas.follow(self.window.series)
 
     def shutdown(self) -> None:
         self._redraw_timer.stop()
@@ -172,8 +169,7 @@ class PlotWidget(QWidget):
 
     def _on_autoscroll(self, checked: bool) -> None:
         self.canvas.autoscroll = checked
-        if checked:
-            self.canvas.follow(self.window.series)
+        self.canvas.show(self.window.series, self.window.series)
 
     def _update_remove_menu(self) -> None:
         self.remove_menu.clear()

@@ -54,12 +54,13 @@ def test_command_line_fields_become_curves_and_show_received_values(make_widget,
 
 def test_header_stamp_is_the_time_axis(make_widget):
     widget = make_widget("/stamped/twist/linear/x")
-    message = TwistStamped()
-    message.header.stamp = rospy.Time(105, 500000000)
-    message.twist.linear.x = 7.0
-    widget.subscriptions._on_message(message, "/stamped")
+    for stamp, value in ((rospy.Time(105, 500000000), 7.0), (rospy.Time(106), 8.0)):
+        message = TwistStamped()
+        message.header.stamp = stamp
+        message.twist.linear.x = value
+        widget.subscriptions._on_message(message, "/stamped")
     widget.update_plot()
-    assert curve_data(widget, "/stamped/twist/linear/x") == ([5.5], [7.0])
+    assert curve_data(widget, "/stamped/twist/linear/x") == ([5.5, 6.0], [7.0, 8.0])
 
 
 def test_topic_box_enables_plus_for_plottable_names_and_adds_a_message_field_by_field(make_widget, qtbot):
@@ -90,12 +91,13 @@ def test_pause_freezes_the_plot_and_resume_shows_what_came_meanwhile(make_widget
     widget = make_widget("-P", "/turtle1/cmd_vel/linear/x")
     assert widget.pause_button.isChecked()
     widget.subscriptions._on_message(Twist(), "/turtle1/cmd_vel")
+    widget.subscriptions._on_message(Twist(), "/turtle1/cmd_vel")
     widget.update_plot()
     assert curve_data(widget, "/turtle1/cmd_vel/linear/x") == ([], [])
     widget.pause_button.click()
     widget.subscriptions._on_message(Twist(), "/turtle1/cmd_vel")
     widget.update_plot()
-    assert len(curve_data(widget, "/turtle1/cmd_vel/linear/x")[0]) == 2
+    assert len(curve_data(widget, "/turtle1/cmd_vel/linear/x")[0]) == 3
     widget.clear_button.click()
     assert curve_data(widget, "/turtle1/cmd_vel/linear/x") == ([], [])
 
@@ -114,6 +116,10 @@ def test_autoscroll_follows_the_newest_point_with_a_ten_second_width(make_widget
     widget.update_plot()
     (low, high), _ = widget.canvas.plotItem.viewRange()
     assert (low, high) == pytest.approx((19.0, 29.0))
+    # only the visible stretch, one point beyond either edge, goes to the curve
+    assert curve_data(widget, "/turtle1/cmd_vel/linear/x")[0] == [float(s) for s in range(18, 30)]
+    widget.autoscroll_checkbox.setChecked(False)  # now all of it, to pan over
+    assert curve_data(widget, "/turtle1/cmd_vel/linear/x")[0] == [float(s) for s in range(1, 30)]
 
 
 def test_fields_of_topics_not_published_yet_are_added_when_they_appear(make_widget, qtbot):
