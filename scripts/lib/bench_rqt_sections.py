@@ -163,11 +163,12 @@ def console_flood(app, rate: float, seconds: float, processes: Processes, ros_en
     from python_qt_binding.QtCore import QTimer
 
     from rqt_console.console_widget import ConsoleWidget
+    from rqt_console.filters import MessageFilter
 
     widget = ConsoleWidget([])
     widget.resize(1000, 600)
     widget.show()
-    widget.exclude_panel.rows[0].filter.set_text("^never seen$", regex=True)  # every row goes through a regex
+    widget.exclude_panel.add_filter(MessageFilter).filter.set_text("^never seen$", regex=True)  # a regex a row
     widget.proxy.filters_changed()
     inserts: List[float] = []
     original_drain = widget.drain

@@ -12,7 +12,7 @@ from python_qt_binding.QtWidgets import (
     QTableView, QVBoxLayout, QWidget, QCheckBox,
 )
 
-from .filters import MessageFilter
+from .filters import MessageFilter, SeverityFilter
 from .filter_panel import FilterPanel
 from .log_file import read_records, write_records
 from .log_model import DEFAULT_LIMIT, LogFilterProxy, LogTableModel
@@ -93,8 +93,8 @@ class ConsoleWidget(QWidget):
         layout = QVBoxLayout(self)
         layout.addLayout(toolbar)
         layout.addWidget(splitter, 1)
-        # one message filter of each kind to start with, as rqt_console opens
-        self.exclude_panel.add_filter(MessageFilter)
+        # the filters rqt_console opens with (ConsoleWidget.restore_settings without saved settings)
+        self.exclude_panel.add_filter(SeverityFilter)
         self.highlight_panel.add_filter(MessageFilter)
 
         self.pause_button.toggled.connect(self.set_paused)

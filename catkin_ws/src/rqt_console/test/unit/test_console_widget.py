@@ -2,7 +2,7 @@
 import pytest
 
 from rqt_console.console_widget import ConsoleWidget
-from rqt_console.filters import NodeFilter
+from rqt_console.filters import MessageFilter, NodeFilter
 from rqt_console.log_record import INFO, WARN, LogRecord
 
 
@@ -19,7 +19,9 @@ def console(qtbot):
 
 
 def test_timer_moves_queued_messages_into_the_table(console, qtbot):
-    assert len(console.proxy.exclude.filters) == 1 and len(console.proxy.highlight.filters) == 1
+    # rqt_console opens with a severity exclude filter and a message highlight filter (restore_settings)
+    assert [f.kind for f in console.proxy.exclude.filters] == ["severity"]
+    assert [f.kind for f in console.proxy.highlight.filters] == ["message"]
     for i in range(250):
         console.queue.put(record("m%d" % i))
     qtbot.waitUntil(lambda: console.model.rowCount() == 250, timeout=2000)
@@ -41,7 +43,12 @@ def test_filter_rows_edit_the_filters(console):
     console.queue.put(record("Oh no! I hit the wall!", WARN, "/turtlesim", ("/rosout", "/turtle1/pose")))
     console.queue.put(record("hello", INFO, "/talker"))
     console.drain()
-    exclude_row = console.exclude_panel.rows[0]
+    severity_row = console.exclude_panel.rows[0]
+    assert [severity_row.choices.item(i).text() for i in range(5)] == ["Debug", "Info", "Warn", "Error", "Fatal"]
+    severity_row.check(WARN)
+    assert [r.message for r in console.proxy.visible_records()] == ["hello"]
+    console.exclude_panel.remove_row(severity_row)
+    exclude_row = console.exclude_panel.add_filter(MessageFilter)
     exclude_row.text_edit.setText("hello")
     assert [r.message for r in console.proxy.visible_records()] == ["Oh no! I hit the wall!"]
     assert console.status_label.text() == "Displaying 1 of 2 messages"
