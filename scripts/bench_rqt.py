@@ -37,8 +37,13 @@ DEFAULT_JSON = os.path.join(REPO, "bench_results", "bench_rqt.json")
 def frame_row(name: str, result: Dict[str, Any]) -> str:
     first, last = result["frame_first_minute"], result["frame_last_minute"]
     return "%-26s %8.2f %8.2f %9.2f %9.2f %8.1f %8.1f" % (
-        name, first["median_ms"], first["p95_ms"], last["median_ms"], last["p95_ms"],
-        result["rss_mib_start"], result["rss_mib_end"],
+        name,
+        first["median_ms"],
+        first["p95_ms"],
+        last["median_ms"],
+        last["p95_ms"],
+        result["rss_mib_start"],
+        result["rss_mib_end"],
     )
 
 
@@ -53,16 +58,24 @@ def table(results: Dict[str, Any]) -> str:
         lines.append("injected: ERROR %s" % injected["error"])
     elif injected:
         lines.append(frame_row("injected, %.0f min data" % injected["data_minutes"], injected))
-        lines.append("  %d points a curve kept at the end (bound %d), %.0f s of wall time" % (
-            injected["points_per_curve_at_end"], injected["buffer_size"], injected["wall_s"]))
+        lines.append(
+            "  %d points a curve kept at the end (bound %d), %.0f s of wall time"
+            % (injected["points_per_curve_at_end"], injected["buffer_size"], injected["wall_s"])
+        )
     real = results.get("plot_real_time", {})
     if "error" in real:
         lines.append("real time: ERROR %s" % real["error"])
     elif real:
         lines.append(frame_row("real time, %.1f min" % real["wall_minutes"], real))
-        lines.append("  points received %d of %d expected (3 x 62.5 Hz); frames late by median %.2f ms, max %.1f ms" % (
-            real["points_received"], real["points_expected"], real["frame_lateness"]["median_ms"],
-            real["frame_lateness"]["max_ms"]))
+        lines.append(
+            "  points received %d of %d expected (3 x 62.5 Hz); frames late by median %.2f ms, max %.1f ms"
+            % (
+                real["points_received"],
+                real["points_expected"],
+                real["frame_lateness"]["median_ms"],
+                real["frame_lateness"]["max_ms"],
+            )
+        )
     console = results.get("console", {})
     lines.append("")
     if "error" in console:
@@ -71,13 +84,18 @@ def table(results: Dict[str, Any]) -> str:
         latency, insert = console["event_loop_latency"], console["batch_insert"]
         lines += [
             "rqt_console at %.0f messages/s for %.0f s" % (console["rate_per_s"], console["seconds"]),
-            "  sent %d, received %d, kept %d (limit %d), newest on top: %s" % (
-                console["sent"], console["received"], console["kept"], console["limit"],
-                "yes" if console["newest_on_top"] else "NO"),
-            "  event-loop latency (10 ms timer): median %.2f ms, p95 %.2f ms, max %.1f ms" % (
-                latency["median_ms"], latency["p95_ms"], latency["max_ms"]),
-            "  batch insert (every 100 ms): median %.2f ms, p95 %.2f ms, max %.1f ms over %d batches" % (
-                insert["median_ms"], insert["p95_ms"], insert["max_ms"], insert["count"]),
+            "  sent %d, received %d, kept %d (limit %d), newest on top: %s"
+            % (
+                console["sent"],
+                console["received"],
+                console["kept"],
+                console["limit"],
+                "yes" if console["newest_on_top"] else "NO",
+            ),
+            "  event-loop latency (10 ms timer): median %.2f ms, p95 %.2f ms, max %.1f ms"
+            % (latency["median_ms"], latency["p95_ms"], latency["max_ms"]),
+            "  batch insert (every 100 ms): median %.2f ms, p95 %.2f ms, max %.1f ms over %d batches"
+            % (insert["median_ms"], insert["p95_ms"], insert["max_ms"], insert["count"]),
             "  RSS %.1f -> %.1f MiB" % (console["rss_mib_start"], console["rss_mib_end"]),
         ]
     lines.append("")
@@ -125,12 +143,24 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
 
             app = QApplication.instance() or QApplication(["bench_rqt"])
             rospy.init_node("rqt_gui_py_node_%d" % os.getpid(), disable_signals=True)
-            measure(results, "plot_injected", "1. rqt_plot, injected data",
-                    lambda: plot_injected(app, args.data_minutes, args.buffer_size))
-            measure(results, "plot_real_time", "2. rqt_plot, real time on turtlesim",
-                    lambda: plot_real_time(app, args.minutes, processes, ros.ros_env))
-            measure(results, "console", "3. rqt_console flood",
-                    lambda: console_flood(app, args.console_rate, args.console_seconds, processes, ros.ros_env))
+            measure(
+                results,
+                "plot_injected",
+                "1. rqt_plot, injected data",
+                lambda: plot_injected(app, args.data_minutes, args.buffer_size),
+            )
+            measure(
+                results,
+                "plot_real_time",
+                "2. rqt_plot, real time on turtlesim",
+                lambda: plot_real_time(app, args.minutes, processes, ros.ros_env),
+            )
+            measure(
+                results,
+                "console",
+                "3. rqt_console flood",
+                lambda: console_flood(app, args.console_rate, args.console_seconds, processes, ros.ros_env),
+            )
             rospy.signal_shutdown("benchmark done")
     ticks, stolen = (end - start for end, start in zip(cpu_ticks(), ticks_at_start))
     results["machine"]["stolen_cpu_share"] = stolen / ticks if ticks else 0.0

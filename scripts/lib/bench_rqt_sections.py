@@ -103,8 +103,15 @@ def plot_real_time(app, minutes: float, processes: Processes, ros_env: Dict[str,
     env.pop("DISPLAY", None)
     processes.start(["rosrun", "turtlesim", "turtlesim_node"], env, "turtlesim.log")
     processes.start(
-        ["rostopic", "pub", "-r", "10", "/turtle1/cmd_vel", "geometry_msgs/Twist",
-         "{linear: {x: 1.5}, angular: {z: 1.0}}"],
+        [
+            "rostopic",
+            "pub",
+            "-r",
+            "10",
+            "/turtle1/cmd_vel",
+            "geometry_msgs/Twist",
+            "{linear: {x: 1.5}, angular: {z: 1.0}}",
+        ],
         env,
         "cmd_vel.log",
     )
@@ -196,8 +203,14 @@ def console_flood(app, rate: float, seconds: float, processes: Processes, ros_en
     env = dict(os.environ, **ros_env)
     here = os.path.dirname(os.path.abspath(__file__))
     publisher = processes.start(
-        ["/usr/bin/python3", os.path.join(here, "bench_rqt_log_publisher.py"), "--rate", str(rate),
-         "--seconds", str(seconds)],
+        [
+            "/usr/bin/python3",
+            os.path.join(here, "bench_rqt_log_publisher.py"),
+            "--rate",
+            str(rate),
+            "--seconds",
+            str(seconds),
+        ],
         env,
         "log_publisher.log",
     )

@@ -35,9 +35,7 @@ class ConsoleShowsWallWarning(unittest.TestCase):
         min_pixels = rospy.get_param("~min_warn_pixels")
         shot_path = rospy.get_param("~screenshot") or os.path.join(tempfile.gettempdir(), "rqt_console_wall.png")
         warned = threading.Event()
-        rospy.Subscriber(
-            "/rosout_agg", Log, lambda log: WALL in log.msg and log.level == Log.WARN and warned.set()
-        )
+        rospy.Subscriber("/rosout_agg", Log, lambda log: WALL in log.msg and log.level == Log.WARN and warned.set())
         cmd_vel = rospy.Publisher("/turtle1/cmd_vel", Twist, queue_size=1)
         log_path = os.path.join(tempfile.gettempdir(), "rqt_console_wall.log")
         with ToolOnScreen(["rosrun", "rqt_console", "rqt_console"], log_path) as tool:

@@ -53,9 +53,11 @@ class PlotShowsPose(unittest.TestCase):
                 node = "/rqt_gui_py_node_%d" % tool.process.pid
 
                 def failures_of(image: np.ndarray):
-                    found = ["%s not subscribed to /turtle1/pose" % node] if node not in subscribers_of(
-                        "/turtle1/pose"
-                    ) else []
+                    found = (
+                        ["%s not subscribed to /turtle1/pose" % node]
+                        if node not in subscribers_of("/turtle1/pose")
+                        else []
+                    )
                     for curve, colour in CURVES.items():
                         count = int(np.count_nonzero(matches(image, colour, 10)))
                         if count < min_pixels:

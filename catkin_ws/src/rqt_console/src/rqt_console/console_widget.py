@@ -8,8 +8,19 @@ from typing import Optional, Sequence
 import rospy
 from python_qt_binding.QtCore import QSize, Qt, QTimer
 from python_qt_binding.QtWidgets import (
-    QAbstractItemView, QFileDialog, QHBoxLayout, QHeaderView, QLabel, QMessageBox, QPushButton, QSpinBox, QSplitter,
-    QTableView, QVBoxLayout, QWidget, QCheckBox,
+    QAbstractItemView,
+    QFileDialog,
+    QHBoxLayout,
+    QHeaderView,
+    QLabel,
+    QMessageBox,
+    QPushButton,
+    QSpinBox,
+    QSplitter,
+    QTableView,
+    QVBoxLayout,
+    QWidget,
+    QCheckBox,
 )
 
 from .filters import MessageFilter, SeverityFilter

@@ -6,8 +6,17 @@ from typing import Callable, Iterable, List
 
 from python_qt_binding.QtCore import Qt, Signal
 from python_qt_binding.QtWidgets import (
-    QCheckBox, QGroupBox, QHBoxLayout, QLabel, QLineEdit, QListWidget, QListWidgetItem, QMenu, QToolButton,
-    QVBoxLayout, QWidget,
+    QCheckBox,
+    QGroupBox,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QListWidget,
+    QListWidgetItem,
+    QMenu,
+    QToolButton,
+    QVBoxLayout,
+    QWidget,
 )
 
 from .filters import FILTER_KINDS, FilterCollection, LogFilter, SelectionFilter, SeverityFilter, TextFilter

@@ -4,7 +4,12 @@ something set; the default when none has), severity/node/topic_filter.py (member
 import pytest
 
 from rqt_console.filters import (
-    FilterCollection, LocationFilter, MessageFilter, NodeFilter, SeverityFilter, TopicFilter,
+    FilterCollection,
+    LocationFilter,
+    MessageFilter,
+    NodeFilter,
+    SeverityFilter,
+    TopicFilter,
 )
 from rqt_console.log_record import ERROR, INFO, WARN, LogRecord
 

@@ -20,11 +20,22 @@ def record(text, severity=INFO, node="/n"):
 
 def test_from_a_rosgraph_log_message():
     log = SimpleNamespace(
-        msg="Oh no! I hit the wall!", level=4, name="/turtlesim", topics=["/turtle1/pose", "/rosout"],
-        header=SimpleNamespace(stamp=SimpleNamespace(secs=5, nsecs=7)), file="world.py", function="update", line=3,
+        msg="Oh no! I hit the wall!",
+        level=4,
+        name="/turtlesim",
+        topics=["/turtle1/pose", "/rosout"],
+        header=SimpleNamespace(stamp=SimpleNamespace(secs=5, nsecs=7)),
+        file="world.py",
+        function="update",
+        line=3,
     )
     made = LogRecord.from_log(log)
-    assert (made.message, made.severity, made.node, made.stamp) == ("Oh no! I hit the wall!", WARN, "/turtlesim", (5, 7))
+    assert (made.message, made.severity, made.node, made.stamp) == (
+        "Oh no! I hit the wall!",
+        WARN,
+        "/turtlesim",
+        (5, 7),
+    )
     assert made.topics == ("/rosout", "/turtle1/pose") and made.location == "world.py:update:3"
 
 
@@ -41,12 +52,23 @@ def test_columns_text_and_colours(qtmodeltester, utc):
     model = LogTableModel()
     assert model.limit == DEFAULT_LIMIT == 20000
     assert [model.headerData(c, Qt.Horizontal) for c in range(7)] == [
-        "#", "Message", "Severity", "Node", "Stamp", "Topics", "Location"
+        "#",
+        "Message",
+        "Severity",
+        "Node",
+        "Stamp",
+        "Topics",
+        "Location",
     ]
     model.insert_records([record("first", DEBUG), record("second", WARN)])
     qtmodeltester.check(model)
     assert [model.data(model.index(0, c)) for c in (0, 1, 2, 3, 5, 6)] == [
-        "#2", "second", "Warn", "/n", "/rosout", "f.py:g:1"
+        "#2",
+        "second",
+        "Warn",
+        "/n",
+        "/rosout",
+        "f.py:g:1",
     ]
     # rqt_console's stamp format 'hh:mm:ss.ZZZ (yyyy-MM-dd)', ZZZ the nanoseconds in 9 digits (Message.stamp)
     assert model.data(model.index(0, 4)) == "22:13:20.000000000 (2023-11-14)"

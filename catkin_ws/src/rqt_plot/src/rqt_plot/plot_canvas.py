@@ -13,7 +13,16 @@ from .data_window import Series
 
 # rqt_plot's DataPlot._colors, in its order
 CURVE_COLOURS = (
-    Qt.blue, Qt.red, Qt.cyan, Qt.magenta, Qt.green, Qt.darkYellow, Qt.black, Qt.darkCyan, Qt.darkRed, Qt.gray,
+    Qt.blue,
+    Qt.red,
+    Qt.cyan,
+    Qt.magenta,
+    Qt.green,
+    Qt.darkYellow,
+    Qt.black,
+    Qt.darkCyan,
+    Qt.darkRed,
+    Qt.gray,
 )
 DEFAULT_X_WIDTH = 10.0  # s shown when autoscroll is on, rqt_plot's default x range
 

@@ -6,7 +6,16 @@ from typing import Callable, Dict, List, Optional, Sequence, Set
 import rospy
 from python_qt_binding.QtCore import Qt, QStringListModel, QTimer
 from python_qt_binding.QtWidgets import (
-    QAction, QCheckBox, QCompleter, QHBoxLayout, QLabel, QLineEdit, QMenu, QPushButton, QToolButton, QVBoxLayout,
+    QAction,
+    QCheckBox,
+    QCompleter,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QMenu,
+    QPushButton,
+    QToolButton,
+    QVBoxLayout,
     QWidget,
 )
 

@@ -73,7 +73,8 @@ def test_arrays():
 
 
 @pytest.mark.parametrize(
-    "path", ["/nothing/x", "/turtle1/pose/z", "/turtle1/pose/x[0]", "/rosout/msg", "/turtle1/pose/x/y", "/turtle1/pose/$"]
+    "path",
+    ["/nothing/x", "/turtle1/pose/z", "/turtle1/pose/x[0]", "/rosout/msg", "/turtle1/pose/x/y", "/turtle1/pose/$"],
 )
 def test_what_cannot_be_plotted_gives_nothing_and_says_why(path):
     curves, why = plot_fields(path, TOPICS, load)
