@@ -2,7 +2,7 @@
 """rostest node: with turtlesim_node and turtle_teleop_key (in a pseudo-terminal, as a user types it) running,
 `rosrun rqt_graph rqt_graph` under Xvfb puts its window up as the node rqt_gui_py_node_<pid>; the graph its code
 builds from the master holds /teleop_turtle -> /turtlesim on /turtle1/cmd_vel; the screenshot shows a drawn graph
-(white scene with outlines and text); Ctrl-C ends the tool with exit code 0."""
+(white scene with outlines and text, no node drawn dead); Ctrl-C ends the tool with exit code 0."""
 from __future__ import annotations
 
 import os
@@ -58,7 +58,10 @@ class GraphWindow(unittest.TestCase):
                 time.sleep(0.2)  # the connection comes up in the nodes' own time; nothing to wait on
                 graph = build_graph(query_system_state(rospy.get_name()), GraphOptions())
             self.assertIn(TELEOP_EDGE, graph.edges, graph)
-            self.assertEqual(graph.nodes, {"/turtlesim": True, "/teleop_turtle": True})
+            self.assertEqual(
+                {n: graph.nodes.get(n) for n in ("/turtlesim", "/teleop_turtle")},
+                {"/turtlesim": True, "/teleop_turtle": True},
+            )
 
             log_path = os.path.join(tempfile.gettempdir(), "rqt_graph_window.log")
             with ToolOnScreen(["rosrun", "rqt_graph", "rqt_graph"], log_path) as tool:
@@ -82,6 +85,9 @@ class GraphWindow(unittest.TestCase):
                         ink = int(np.count_nonzero(matches(scene, (0, 0, 0), 90)))
                         if ink < 400:  # two ellipses, their names, an arrow and its label
                             failures.append("graph scene has %d dark pixels" % ink)
+                        dead = int(np.count_nonzero(matches(scene, (255, 0, 0), 60)))
+                        if dead > 20:  # graph_view.DEAD: a node that did not answer the tool
+                            failures.append("graph scene has %d red (dead node) pixels" % dead)
                     return failures
 
                 image, failures = tool.wait_for(failures_of, timeout)

@@ -170,6 +170,11 @@ class GraphView(QGraphicsView):
         self.scale(factor, factor)
 
     def fit(self) -> None:
+        """Shrink a graph larger than the view to fit it; a small one keeps its size (no giant letters)."""
         rect = self.scene().itemsBoundingRect().adjusted(-10, -10, 10, 10)
-        if not rect.isEmpty():
-            self.fitInView(rect, Qt.KeepAspectRatio)
+        if rect.isEmpty():
+            return
+        self.fitInView(rect, Qt.KeepAspectRatio)
+        if self.transform().m11() > 1.0:
+            self.resetTransform()
+        self.centerOn(rect.center())

@@ -67,12 +67,19 @@ def _default_query() -> SystemState:
     return query_system_state(rospy.get_name())
 
 
+def parse_arguments(args: List[str]) -> argparse.Namespace:
+    """rqt_graph takes no options of its own: --help, and an error for anything else."""
+    return argparse.ArgumentParser(prog="rqt_graph", description="The ROS computation graph in a window.").parse_args(
+        args
+    )
+
+
 class GraphWidget(QWidget):
     """``GraphWidget(args)``: ``args`` is rqt_graph's command line (it takes no options of its own)."""
 
     def __init__(self, args: Optional[List[str]] = None, query: Optional[Callable[[], SystemState]] = None):
         super().__init__()
-        argparse.ArgumentParser(prog="rqt_graph", description="The ROS computation graph.").parse_args(args or [])
+        parse_arguments(args or [])
         self.setObjectName("RosGraph")
         self.setWindowTitle("Node Graph")
         self.state: Optional[SystemState] = None

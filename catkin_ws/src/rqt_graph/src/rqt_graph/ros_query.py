@@ -66,16 +66,19 @@ def query_system_state(caller_id: str, master_uri: Optional[str] = None, timeout
     for _name, nodes in publishers + subscribers + services:
         state.nodes.update(nodes)
 
-    def lookup(node: str) -> Optional[str]:
-        try:
-            return master.lookupNode(node)
-        except Exception:  # unregistered meanwhile
-            return None
-
+    # The master's proxy is one HTTP connection, not to be shared between threads: look the nodes up in turn (the
+    # master answers at once); only the nodes, which may hang, are asked in parallel, each on a connection of its own.
+    uris = {node: _lookup(master, node) for node in sorted(state.nodes)}
+    uri_to_node = {uri: node for node, uri in uris.items() if uri}
     with concurrent.futures.ThreadPoolExecutor(PARALLEL_QUERIES) as pool:
-        uris = dict(zip(sorted(state.nodes), pool.map(lookup, sorted(state.nodes))))
-        uri_to_node = {uri: node for node, uri in uris.items() if uri}
         infos = pool.map(lambda node: uris[node] and bus_info(uris[node], caller_id, timeout), sorted(state.nodes))
         for node, info in zip(sorted(state.nodes), infos):
             state.connections[node] = None if info is None else connections_from_bus_info(info, uri_to_node)
     return state
+
+
+def _lookup(master: rosgraph.Master, node: str) -> Optional[str]:
+    try:
+        return master.lookupNode(node)
+    except Exception:  # unregistered meanwhile
+        return None
