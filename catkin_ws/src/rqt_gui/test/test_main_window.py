@@ -15,32 +15,16 @@ import sys
 import tempfile
 import unittest
 
-import numpy as np
-import rosgraph
 import rospy
 import rostest
 from workspace_testing.qt_wait import run_qt_until
+from workspace_testing.tool_checks import assert_comes_up_and_stops, crop_to_widget
 from workspace_testing.tool_window import ToolOnScreen, save_png
 
 from rqt_gui import plugins
 
 TITLE = "Default - rqt"
 TOOLS = ("rqt_graph", "rqt_plot", "rqt_console", "rqt_logger_level")
-
-
-def registered(node: str) -> bool:
-    try:
-        rosgraph.Master(rospy.get_name()).lookupNode(node)
-        return True
-    except rosgraph.MasterError:
-        return False
-
-
-def titled(display: str, title: str) -> bool:
-    tree = subprocess.run(
-        ["xwininfo", "-root", "-tree", "-display", display], stdout=subprocess.PIPE, universal_newlines=True
-    ).stdout
-    return '"%s"' % title in tree
 
 
 class MainWindowTest(unittest.TestCase):
@@ -64,15 +48,7 @@ class MainWindowTest(unittest.TestCase):
         shot_path = rospy.get_param("~screenshot") or os.path.join(tempfile.gettempdir(), "rqt_main_window.png")
         log_path = os.path.join(tempfile.gettempdir(), "rqt_main_window.log")
         with ToolOnScreen(["rqt"], log_path) as tool:
-            node = "/rqt_gui_py_node_%d" % tool.process.pid
-
-            def failures_of(_image: np.ndarray):
-                failures = [] if registered(node) else ["%s not registered" % node]
-                return failures + ([] if titled(tool.display, TITLE) else ["no window titled %r" % TITLE])
-
-            _image, failures = tool.wait_for(failures_of, timeout)
-            self.assertEqual(failures, [], "tool output:\n%s" % tool.log())
-            self.assertEqual(tool.interrupt(15.0), 0, "Ctrl-C; tool output:\n%s" % tool.log())
+            assert_comes_up_and_stops(self, tool, TITLE, "/rqt_gui_py_node_%d" % tool.process.pid, timeout)
 
             os.environ["DISPLAY"] = tool.display
             from python_qt_binding.QtWidgets import QApplication
@@ -103,8 +79,7 @@ class MainWindowTest(unittest.TestCase):
                 run_qt_until(lambda: False, 0.5)  # let the window paint
                 image = tool.grab()
                 self.assertIsNotNone(image)
-                frame = window.frameGeometry()
-                save_png(image[frame.top() : frame.bottom() + 1, frame.left() : frame.right() + 1], shot_path)
+                save_png(crop_to_widget(image, window), shot_path)
                 for dock in list(window.docks):
                     dock.close()
                 self.assertTrue(run_qt_until(lambda: not window.docks, timeout))

@@ -6,35 +6,18 @@ rqt_gui_py_node_<pid> and Ctrl-C ends it with exit code 0; then the tool's widge
 from __future__ import annotations
 
 import os
-import subprocess
 import sys
 import tempfile
 import unittest
 
-import numpy as np
-import rosgraph
 import rospy
 import rostest
 from roscpp.srv import GetLoggers
 from workspace_testing.qt_wait import run_qt_until
+from workspace_testing.tool_checks import assert_comes_up_and_stops, crop_to_widget
 from workspace_testing.tool_window import ToolOnScreen, save_png
 
 TITLE = "rqt_logger_level__LoggerLevel - rqt"
-
-
-def registered(node: str) -> bool:
-    try:
-        rosgraph.Master(rospy.get_name()).lookupNode(node)
-        return True
-    except rosgraph.MasterError:
-        return False
-
-
-def titled(display: str, title: str) -> bool:
-    tree = subprocess.run(
-        ["xwininfo", "-root", "-tree", "-display", display], stdout=subprocess.PIPE, universal_newlines=True
-    ).stdout
-    return '"%s"' % title in tree
 
 
 def turtlesim_level(logger: str) -> str:
@@ -50,15 +33,7 @@ class LoggerLevelWindow(unittest.TestCase):
         self.assertEqual(turtlesim_level("rosout"), "INFO")
         log_path = os.path.join(tempfile.gettempdir(), "rqt_logger_level_window.log")
         with ToolOnScreen(["rosrun", "rqt_logger_level", "rqt_logger_level"], log_path) as tool:
-            node = "/rqt_gui_py_node_%d" % tool.process.pid
-
-            def failures_of(_image: np.ndarray):
-                failures = [] if registered(node) else ["%s not registered" % node]
-                return failures + ([] if titled(tool.display, TITLE) else ["no window titled %r" % TITLE])
-
-            _image, failures = tool.wait_for(failures_of, timeout)
-            self.assertEqual(failures, [], "tool output:\n%s" % tool.log())
-            self.assertEqual(tool.interrupt(15.0), 0, "Ctrl-C; tool output:\n%s" % tool.log())
+            assert_comes_up_and_stops(self, tool, TITLE, "/rqt_gui_py_node_%d" % tool.process.pid, timeout)
 
             os.environ["DISPLAY"] = tool.display
             from python_qt_binding.QtCore import Qt
@@ -94,8 +69,7 @@ class LoggerLevelWindow(unittest.TestCase):
                 run_qt_until(lambda: False, 0.3)  # let the window paint what it shows now
                 image = tool.grab()
                 self.assertIsNotNone(image)
-                frame = window.frameGeometry()
-                save_png(image[frame.top() : frame.bottom() + 1, frame.left() : frame.right() + 1], shot_path)
+                save_png(crop_to_widget(image, window), shot_path)
             finally:
                 widget.shutdown()
                 window.close()
