@@ -77,3 +77,57 @@ def test_run_without_display_prints_one_line_and_returns_1():
     assert result.stdout == ""
     assert result.stderr.count("\n") == 1 and result.stderr.startswith("rqt_x: no display: ")
     assert "python_qt_binding" not in result.stderr
+
+
+RUN_WITH_FAKE_ROSPY = """
+import os, signal, sys, types
+sys.path.insert(0, %(src)r)
+events = []
+rospy = types.ModuleType("rospy")
+rospy.init_node = lambda name, argv, anonymous, disable_signals: events.append(
+    ("init_node", name == "rqt_gui_py_node_%%d" %% os.getpid(), anonymous, disable_signals))
+rospy.myargv = lambda argv: [a for a in argv if ":=" not in a]
+rospy.is_shutdown = lambda: %(ros_shutdown)s
+rospy.signal_shutdown = lambda reason: events.append(("signal_shutdown",))
+sys.modules["rospy"] = rospy
+from python_qt_binding.QtCore import QTimer
+from python_qt_binding.QtWidgets import QLabel
+from rqt_gui.standalone import run
+
+def factory(args):
+    events.append(("factory", args))
+    widget = QLabel("tool")
+    widget.shutdown = lambda: events.append(("shutdown",))
+    QTimer.singleShot(200, lambda: %(end)s)
+    return widget
+
+code = run(factory, ["rqt_x", "--flag", "__name:=other", "a:=b"], "title")
+print(code, events)
+"""
+
+
+@pytest.mark.parametrize(
+    "how, end, ros_shutdown",
+    [
+        ("window closed", "widget.window().close()", "False"),
+        ("Ctrl-C", "os.kill(os.getpid(), signal.SIGINT)", "False"),
+        ("SIGTERM", "os.kill(os.getpid(), signal.SIGTERM)", "False"),
+        ("ROS shutdown", "None", "len(events) > 1"),
+    ],
+)
+def test_run_ends_cleanly(how, end, ros_shutdown):
+    """Each way out returns 0 after the widget's shutdown(), then the node's; the node is rqt_gui_py_node_<pid>."""
+    code = RUN_WITH_FAKE_ROSPY % {"src": SRC, "end": end, "ros_shutdown": ros_shutdown}
+    environ = dict(os.environ, QT_QPA_PLATFORM="offscreen")
+    result = subprocess.run(
+        [sys.executable, "-c", code],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        universal_newlines=True,
+        env=environ,
+        timeout=30,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == (
+        "0 [('init_node', True, False, True), ('factory', ['--flag']), ('shutdown',), ('signal_shutdown',)]"
+    ), how
