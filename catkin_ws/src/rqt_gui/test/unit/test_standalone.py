@@ -57,6 +57,17 @@ def test_a_listening_local_display_passes(monkeypatch):
             server.close()
 
 
+def run_python(code: str, environ: dict) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-c", code],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        universal_newlines=True,
+        env=environ,
+        timeout=60,
+    )
+
+
 def test_run_without_display_prints_one_line_and_returns_1():
     """In a process of its own: the factory must never be called, no Qt application made."""
     code = (
@@ -66,13 +77,7 @@ def test_run_without_display_prints_one_line_and_returns_1():
         "sys.exit(run(factory, ['rqt_x'], 'x'))\n" % SRC
     )
     environ = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY", "QT_QPA_PLATFORM")}
-    result = subprocess.run(
-        [sys.executable, "-c", code],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        universal_newlines=True,
-        env=environ,
-    )
+    result = run_python(code, environ)
     assert result.returncode == 1
     assert result.stdout == ""
     assert result.stderr.count("\n") == 1 and result.stderr.startswith("rqt_x: no display: ")
@@ -118,15 +123,7 @@ print(code, events)
 def test_run_ends_cleanly(how, end, ros_shutdown):
     """Each way out returns 0 after the widget's shutdown(), then the node's; the node is rqt_gui_py_node_<pid>."""
     code = RUN_WITH_FAKE_ROSPY % {"src": SRC, "end": end, "ros_shutdown": ros_shutdown}
-    environ = dict(os.environ, QT_QPA_PLATFORM="offscreen")
-    result = subprocess.run(
-        [sys.executable, "-c", code],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        universal_newlines=True,
-        env=environ,
-        timeout=30,
-    )
+    result = run_python(code, dict(os.environ, QT_QPA_PLATFORM="offscreen"))
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == (
         "0 [('init_node', True, False, True), ('factory', ['--flag']), ('shutdown',), ('signal_shutdown',)]"
