@@ -31,6 +31,7 @@ from turtle_sim_ode.models.urdf import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_po
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsWorld
+from turtle_sim_ode.world.plugins import DiffDriveRobot
 from turtle_sim_ode.world.records import (
     JointProperties,
     LinkProperties,
@@ -41,7 +42,6 @@ from turtle_sim_ode.world.records import (
     QuatXYZW,
     WorldProperties,
 )
-from turtle_sim_ode.world.robot import DiffDriveRobot
 from turtle_sim_ode.world.values import (
     MAX_FORCE,
     MAX_SPEED,
