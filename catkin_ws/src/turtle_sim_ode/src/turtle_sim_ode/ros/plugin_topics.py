@@ -2,7 +2,7 @@
 rate to period, and the odometry covariances the drive plugins report."""
 from __future__ import annotations
 
-from typing import Sequence, Tuple
+from typing import Optional, Sequence, Tuple
 
 import rospy
 
@@ -70,16 +70,16 @@ def rotate_inverse(q: Sequence[float], v: Sequence[float]) -> Vec3:
     return (vx + w * tx + y * tz - z * ty, vy + w * ty + z * tx - x * tz, vz + w * tz + x * ty - y * tx)
 
 
-def tf_prefix(namespace: str) -> str:
+def tf_prefix(namespace: str, otherwise: Optional[str] = None) -> str:
     """The tf_prefix gazebo_plugins' GazeboRos (diff drive, Kobuki) gives a plugin in ``namespace``: the
     ``tf_prefix`` parameter searched upwards from the namespace, else the namespace itself without its trailing
-    slash."""
+    slash. Plugins that call tf::getPrefixParam instead (skid steer) pass ``otherwise=""``."""
     parts = [part for part in namespace.strip("/").split("/") if part]
     for depth in range(len(parts), -1, -1):
         key = "/" + "/".join(parts[:depth] + ["tf_prefix"])
         if rospy.has_param(key):
             return str(rospy.get_param(key))
-    return namespace.rstrip("/")
+    return namespace.rstrip("/") if otherwise is None else otherwise
 
 
 def resolve_frame(prefix: str, frame: str) -> str:

@@ -17,7 +17,7 @@ from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors
 from turtle_sim_ode.sensors.scene import Scene
 from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
-from turtle_sim_ode.world.plugins import DiffDriveRobot, ModelPlugins, read_plugins
+from turtle_sim_ode.world.plugins import DriveRobot, ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
 from turtle_sim_ode.world.values import WorldError, update_rate, vector
 
@@ -63,7 +63,7 @@ class Simulation(WorldControl):
         PhysicsWorld's."""
         self.physics = PhysicsWorld(physics_params, contact_kernel)
         self.models: Dict[str, BuiltModel] = {}
-        self.robots: Dict[str, DiffDriveRobot] = {}
+        self.robots: Dict[str, DriveRobot] = {}
         self.plugins: Dict[str, ModelPlugins] = {}  # what each model's plugin tags ask of the ROS side
         self.max_update_rate = (
             1.0 / self.physics.time_step if max_update_rate is None else update_rate(max_update_rate, "max_update_rate")

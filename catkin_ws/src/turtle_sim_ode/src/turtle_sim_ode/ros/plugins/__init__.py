@@ -8,7 +8,17 @@ from __future__ import annotations
 from typing import Callable, Dict, List, Optional
 
 from turtle_sim_ode.ros.periodic import Advertising, ModelContext, Periodic, TopicCheck
-from turtle_sim_ode.ros.plugins import bumper, camera, diff_drive, imu, joint_state_publisher, kobuki, laser, p3d
+from turtle_sim_ode.ros.plugins import (
+    bumper,
+    camera,
+    diff_drive,
+    imu,
+    joint_state_publisher,
+    kobuki,
+    laser,
+    p3d,
+    skid_steer_drive,
+)
 from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import PackedPublisher, release
 from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
@@ -17,12 +27,14 @@ from turtle_sim_ode.sensors.plugins.imu import ImuConfig
 from turtle_sim_ode.sensors.plugins.laser import LaserConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
+from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
 from turtle_sim_ode.world.simulation import Simulation
 
 Adapter = Callable[[ModelContext, object], List[Periodic]]
 ADAPTERS: Dict[type, Adapter] = {
     KobukiConfig: kobuki.interfaces,
     DriveConfig: diff_drive.interfaces,
+    SkidSteerConfig: skid_steer_drive.interfaces,
     GroundTruthConfig: p3d.interfaces,
     JointStatesConfig: joint_state_publisher.interfaces,
     ImuConfig: imu.interfaces,

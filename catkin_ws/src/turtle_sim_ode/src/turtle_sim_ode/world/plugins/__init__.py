@@ -6,12 +6,14 @@ a module of ros.plugins; sensor plugins are in sensors.plugins. Adding a plugin 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, Dict, List, Mapping, Optional
+from typing import Callable, Dict, List, Mapping, Optional, Protocol, Tuple
 
+from turtle_sim_ode.models.builder import BuiltModel, JointHandle
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.sensors.config import SensorBlocks
-from turtle_sim_ode.world.plugins import diff_drive, imu, joint_state_publisher, kobuki, p3d
+from turtle_sim_ode.world.diff_drive import DiffDriveController, DiffDriveParams
+from turtle_sim_ode.world.plugins import diff_drive, imu, joint_state_publisher, kobuki, p3d, skid_steer_drive
 from turtle_sim_ode.world.plugins.diff_drive import DIFF_DRIVE, DiffDriveRobot, DriveConfig
 from turtle_sim_ode.world.plugins.imu import IMU
 from turtle_sim_ode.world.plugins.joint_state_publisher import JOINT_STATE_PUBLISHER, JointStatesConfig
@@ -19,10 +21,10 @@ from turtle_sim_ode.world.plugins.kobuki import KOBUKI
 from turtle_sim_ode.world.plugins.p3d import P3D, GroundTruthConfig, find_body
 
 __all__ = ["DIFF_DRIVE", "IMU", "JOINT_STATE_PUBLISHER", "KOBUKI", "P3D", "DRIVES", "MODEL_PLUGINS"]
-__all__ += ["DiffDriveRobot", "DriveConfig", "GroundTruthConfig", "JointStatesConfig", "ModelPlugins"]
+__all__ += ["DiffDriveRobot", "DriveRobot", "DriveConfig", "GroundTruthConfig", "JointStatesConfig", "ModelPlugins"]
 __all__ += ["find_body", "read_plugins", "unsupported_warning"]
 
-MODULES = (kobuki, diff_drive, p3d, joint_state_publisher, imu)
+MODULES = (kobuki, diff_drive, skid_steer_drive, p3d, joint_state_publisher, imu)
 MODEL_PLUGINS: Dict[str, Callable[[str, GazeboPlugin, Mapping[str, object]], object]] = {
     name: module.read for module in MODULES for name in module.MODEL_PLUGINS
 }
@@ -32,13 +34,30 @@ SHOWN_FILENAMES = 10
 SHOWN_FILENAME_CHARS = 80
 
 
+class DriveRobot(Protocol):
+    """What a drive plugin's ``make_robot`` gives: wheel motors the simulation sets before each step (``drive``)."""
+
+    model: BuiltModel
+    config: object
+    params: DiffDriveParams
+    drive: DiffDriveController
+    wheels: Tuple[JointHandle, ...]
+
+    def reset_odometry(self, now: float) -> None:
+        ...
+
+    def wheels_moved(self, now: float) -> None:
+        ...
+
+
 @dataclass
 class ModelPlugins(SensorBlocks):
     """The configs of a model's plugins, model plugins first, then those of its sensors (``configs``)."""
 
     @property
-    def drives(self) -> List[DriveConfig]:
-        return self.of_type(DriveConfig)
+    def drives(self) -> List:
+        """The drive plugins' configs: those that make a robot (``make_robot(model)``) the simulation steps."""
+        return [config for config in self.configs if hasattr(config, "make_robot")]
 
     @property
     def ground_truths(self) -> List[GroundTruthConfig]:

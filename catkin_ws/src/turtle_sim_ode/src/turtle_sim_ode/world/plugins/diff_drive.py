@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass
 from typing import Dict, Mapping, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel
+from turtle_sim_ode.models.builder import BuiltModel, JointHandle
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.diff_drive import DiffDriveController, DiffDriveParams, WheelOdometry
@@ -55,12 +55,21 @@ class DiffDriveRobot:
         self.drive = DiffDriveController(self.left.joint, self.right.joint, self.params)
         self.odometry = WheelOdometry.from_params(self.params)
 
+    @property
+    def wheels(self) -> Tuple[JointHandle, ...]:
+        return (self.left, self.right)
+
     def update_odometry(self, now: float) -> None:
         """Read the encoders (call at the odometry rate, after a step)."""
         self.odometry.update(self.left.angle(), self.right.angle(), now)
 
     def reset_odometry(self, now: float) -> None:
         self.odometry.reset()
+        self.update_odometry(now)
+
+    def wheels_moved(self, now: float) -> None:
+        """The wheels were set to new positions (set_model_configuration): the odometry keeps its pose."""
+        self.odometry.reset(*self.odometry.pose)
         self.update_odometry(now)
 
 
