@@ -18,6 +18,7 @@ from turtle_sim_ode.ros.plugins import (
     laser,
     p3d,
     skid_steer_drive,
+    velodyne,
 )
 from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import PackedPublisher, release
@@ -25,6 +26,7 @@ from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.plugins.imu import ImuConfig
 from turtle_sim_ode.sensors.plugins.laser import LaserConfig
+from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
@@ -41,6 +43,7 @@ ADAPTERS: Dict[type, Adapter] = {
     LaserConfig: laser.interfaces,
     ContactConfig: bumper.interfaces,
     CameraConfig: camera.interfaces,
+    VelodyneConfig: velodyne.interfaces,
 }
 
 
