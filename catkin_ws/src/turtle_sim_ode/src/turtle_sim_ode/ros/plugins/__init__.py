@@ -12,6 +12,7 @@ from turtle_sim_ode.ros.plugins import (
     bumper,
     camera,
     diff_drive,
+    hector_imu,
     imu,
     joint_state_publisher,
     kobuki,
@@ -28,6 +29,7 @@ from turtle_sim_ode.sensors.plugins.imu import ImuConfig
 from turtle_sim_ode.sensors.plugins.laser import LaserConfig
 from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
+from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
 from turtle_sim_ode.world.simulation import Simulation
@@ -44,6 +46,7 @@ ADAPTERS: Dict[type, Adapter] = {
     ContactConfig: bumper.interfaces,
     CameraConfig: camera.interfaces,
     VelodyneConfig: velodyne.interfaces,
+    HectorImuConfig: hector_imu.interfaces,
 }
 
 
