@@ -13,10 +13,9 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-import time
 from typing import Any, Callable, Dict, Optional, Sequence, Tuple
 
-from bench_camera import MODEL, PACKAGE, stepper, turtlebot_in_room
+from bench_camera import MODEL, PACKAGE, best_seconds, stepper, turtlebot_in_room
 
 # (horizontal samples, lasers, rate Hz): the VLP-16 of the issue first.
 LIDARS: Tuple[Tuple[int, int, float], ...] = ((1800, 16, 10.0), (1024, 64, 10.0))
@@ -82,25 +81,12 @@ def lidar_cost(
     bare = turtlebot_in_room(None)
     worlds = [with_lidar(lidar) for lidar in lidars]
     runs = [stepper(*bare, 0.0)] + [stepper(sim, scans, lidar[2]) for (sim, scans), lidar in zip(worlds, lidars)]
-    best = [float("inf")] * len(runs)
-    for _ in range(repeats):
-        for index, run in enumerate(runs):
-            start = time.perf_counter()
-            run(steps)
-            best[index] = min(best[index], time.perf_counter() - start)
+    best = best_seconds([lambda run=run: run(steps) for run in runs], repeats)
     time_step = bare[0].physics.time_step
     rtf = [steps * time_step / seconds for seconds in best]
     rows = []
     for index, ((samples, lasers, rate), (sim, scans)) in enumerate(zip(lidars, worlds)):
-        numpy_scan = scan_work(sim, ray_kernel=False)
-        scan_best = numpy_best = float("inf")
-        for _ in range(max(3, repeats)):
-            start = time.perf_counter()
-            scans[0]()
-            scan_best = min(scan_best, time.perf_counter() - start)
-            start = time.perf_counter()
-            numpy_scan()
-            numpy_best = min(numpy_best, time.perf_counter() - start)
+        scan_best, numpy_best = best_seconds([scans[0], scan_work(sim, ray_kernel=False)], max(3, repeats))
         rows.append(
             {
                 "samples": samples,

@@ -347,6 +347,27 @@ static void cross3(const double* a, const double* b, double* out)
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* Moller-Trumbore: the parameter t at which the ray origin + t d meets the triangle v0 + a e1 + b e2 (either side),
+ * INFINITY if it misses; ``toOrigin`` = origin - v0 and ``q`` = toOrigin x e1, the same for every ray from origin. */
+static double triangleHit(const double* d, const double* e1, const double* e2, const double* toOrigin, const double* q)
+{
+  double pv[3];
+  cross3(d, e2, pv);
+  double det = dot3(e1, pv);
+  if (det == 0.0)
+  {
+    return INFINITY;
+  }
+  double inverse = 1.0 / det;
+  double a = dot3(toOrigin, pv) * inverse;
+  double b = dot3(d, q) * inverse;
+  if (a < 0.0 || b < 0.0 || a + b > 1.0)
+  {
+    return INFINITY;
+  }
+  return dot3(e2, q) * inverse;
+}
+
 /* A mesh's triangles in rows [rowBegin, rowEnd), each in the pixels its projection may cover, seen from both sides
  * (a mesh need not be closed, nor its faces wound one way) with one shade a triangle. Returns the ray tests made. */
 static long meshRows(const Scene* s, const Mesh* mesh, int rowBegin, int rowEnd, double* restrict distance,
@@ -428,21 +449,7 @@ static long meshRows(const Scene* s, const Mesh* mesh, int rowBegin, int rowEnd,
           d[a] = local[3 * a] * u + local[3 * a + 1] * vv + local[3 * a + 2];
         }
         ++tests;
-        double pv[3];
-        cross3(d, e2, pv);
-        double det = dot3(e1, pv);
-        if (det == 0.0)
-        {
-          continue;
-        }
-        double inverse = 1.0 / det;
-        double a = dot3(toCamera, pv) * inverse;
-        double b = dot3(d, q) * inverse;
-        if (a < 0.0 || b < 0.0 || a + b > 1.0)
-        {
-          continue;
-        }
-        double t = dot3(e2, q) * inverse; /* the hit's depth: the ray's optical z is 1 */
+        double t = triangleHit(d, e1, e2, toCamera, q); /* the hit's depth: the ray's optical z is 1 */
         int p = j * s->width + i;
         if (t > s->tMin && t < distance[p])
         {
@@ -785,27 +792,9 @@ static double meshHit(const Mesh* mesh, const double* start, const double* d, do
       toStart[a] = start[a] - v0[a];
     }
     ++*tests;
-    double pv[3];
-    cross3(d, e2, pv);
-    double det = dot3(e1, pv);
-    if (det == 0.0)
-    {
-      continue;
-    }
-    double inverse = 1.0 / det;
-    double a = dot3(toStart, pv) * inverse;
-    if (a < 0.0 || a > 1.0)
-    {
-      continue;
-    }
     double q[3];
     cross3(toStart, e1, q);
-    double b = dot3(d, q) * inverse;
-    if (b < 0.0 || a + b > 1.0)
-    {
-      continue;
-    }
-    double t = dot3(e2, q) * inverse;
+    double t = triangleHit(d, e1, e2, toStart, q);
     if (t > tMin && t < best)
     {
       best = t;

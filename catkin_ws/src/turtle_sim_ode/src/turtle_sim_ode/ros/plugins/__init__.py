@@ -18,6 +18,7 @@ from turtle_sim_ode.ros.plugins import (
     kobuki,
     laser,
     p3d,
+    planar_move,
     skid_steer_drive,
     velodyne,
 )
@@ -31,6 +32,7 @@ from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
 from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
+from turtle_sim_ode.world.plugins.planar_move import PlanarMoveConfig
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
 from turtle_sim_ode.world.simulation import Simulation
 
@@ -39,6 +41,7 @@ ADAPTERS: Dict[type, Adapter] = {
     KobukiConfig: kobuki.interfaces,
     DriveConfig: diff_drive.interfaces,
     SkidSteerConfig: skid_steer_drive.interfaces,
+    PlanarMoveConfig: planar_move.interfaces,
     GroundTruthConfig: p3d.interfaces,
     JointStatesConfig: joint_state_publisher.interfaces,
     ImuConfig: imu.interfaces,

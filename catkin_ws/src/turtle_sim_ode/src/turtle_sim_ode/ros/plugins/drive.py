@@ -27,8 +27,28 @@ from turtle_sim_ode.ros.plugin_topics import (
 from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.throttle import logwarn_every
 from turtle_sim_ode.ros.wire import JointStatePacker, OdometryPacker, PackedPublisher, Quat, TransformPacker, release
-from turtle_sim_ode.world.plugins import DiffDriveRobot
+from turtle_sim_ode.world.plugins import DiffDriveRobot, DriveRobot
 from turtle_sim_ode.world.simulation import Simulation
+
+
+def command_drive(name: str, robot: DriveRobot, twist: Twist, now: float) -> None:
+    """A Twist's linear.x and angular.z to ``robot``'s drive; throttled warnings for a command not finite (ignored)
+    or beyond the drive's limits (clamped)."""
+    linear, angular = twist.linear.x, twist.angular.z
+    params = robot.params
+    if not robot.drive.set_command(linear, angular, now):
+        logwarn_every(
+            5.0,
+            name + "/not_finite",
+            "%s: velocity command ignored, not finite: linear.x [%s] angular.z [%s]" % (name, linear, angular),
+        )
+    elif abs(linear) > params.max_linear or abs(angular) > params.max_angular:
+        logwarn_every(
+            5.0,
+            name + "/clamped",
+            "%s: velocity command clamped: linear.x [%s] angular.z [%s] to max_linear [%s] max_angular [%s]"
+            % (name, linear, angular, params.max_linear, params.max_angular),
+        )
 
 
 class DriveInterface(Periodic):
@@ -79,20 +99,7 @@ class DriveInterface(Periodic):
         )
 
     def _on_velocity(self, twist: Twist) -> None:
-        linear, angular = twist.linear.x, twist.angular.z
-        if not self.robot.drive.set_command(linear, angular, self._sim.sim_time):
-            logwarn_every(
-                5.0,
-                self.name + "/not_finite",
-                "%s: velocity command ignored, not finite: linear.x [%s] angular.z [%s]" % (self.name, linear, angular),
-            )
-        elif abs(linear) > self.robot.params.max_linear or abs(angular) > self.robot.params.max_angular:
-            logwarn_every(
-                5.0,
-                self.name + "/clamped",
-                "%s: velocity command clamped: linear.x [%s] angular.z [%s] to max_linear [%s] max_angular [%s]"
-                % (self.name, linear, angular, self.robot.params.max_linear, self.robot.params.max_angular),
-            )
+        command_drive(self.name, self.robot, twist, self._sim.sim_time)
 
     def _on_reset(self, _msg: EmptyMsg) -> None:
         self._reset_requested = True  # applied in the simulation thread, between steps

@@ -14,7 +14,7 @@ from nav_msgs.msg import Odometry
 
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, subscriber
 from turtle_sim_ode.ros.plugin_topics import period, resolve_frame, tf_prefix
-from turtle_sim_ode.ros.throttle import logwarn_every
+from turtle_sim_ode.ros.plugins.drive import command_drive
 from turtle_sim_ode.ros.wire import OdometryPacker, PackedPublisher, TransformPacker, release
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig, SkidSteerRobot
 from turtle_sim_ode.world.simulation import Simulation
@@ -47,13 +47,7 @@ class SkidSteerInterface(Periodic):
         self._tf_packer = TransformPacker(odom_frame, base_frame)
 
     def _on_velocity(self, twist: Twist) -> None:
-        linear, angular = twist.linear.x, twist.angular.z
-        if not self.robot.drive.set_command(linear, angular, self._sim.sim_time):
-            logwarn_every(
-                5.0,
-                self.name + "/not_finite",
-                "%s: velocity command ignored, not finite: linear.x [%s] angular.z [%s]" % (self.name, linear, angular),
-            )
+        command_drive(self.name, self.robot, twist, self._sim.sim_time)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         model = self.robot.model

@@ -12,7 +12,7 @@ from turtle_sim_ode.models.builder import BuiltModel, JointHandle
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.sensors.config import SensorBlocks
-from turtle_sim_ode.world.diff_drive import DiffDriveController, DiffDriveParams
+from turtle_sim_ode.world.diff_drive import DiffDriveParams
 from turtle_sim_ode.world.plugins import (
     diff_drive,
     hector_imu,
@@ -20,6 +20,7 @@ from turtle_sim_ode.world.plugins import (
     joint_state_publisher,
     kobuki,
     p3d,
+    planar_move,
     skid_steer_drive,
 )
 from turtle_sim_ode.world.plugins.diff_drive import DIFF_DRIVE, DiffDriveRobot, DriveConfig
@@ -32,7 +33,7 @@ __all__ = ["DIFF_DRIVE", "IMU", "JOINT_STATE_PUBLISHER", "KOBUKI", "P3D", "DRIVE
 __all__ += ["DiffDriveRobot", "DriveRobot", "DriveConfig", "GroundTruthConfig", "JointStatesConfig", "ModelPlugins"]
 __all__ += ["find_body", "read_plugins", "unsupported_warning"]
 
-MODULES = (kobuki, diff_drive, skid_steer_drive, p3d, joint_state_publisher, imu, hector_imu)
+MODULES = (kobuki, diff_drive, skid_steer_drive, planar_move, p3d, joint_state_publisher, imu, hector_imu)
 MODEL_PLUGINS: Dict[str, Callable[[str, GazeboPlugin, Mapping[str, object]], object]] = {
     name: module.read for module in MODULES for name in module.MODEL_PLUGINS
 }
@@ -42,13 +43,22 @@ SHOWN_FILENAMES = 10
 SHOWN_FILENAME_CHARS = 80
 
 
+class Motors(Protocol):
+    def update(self, now: float, dt: float) -> None:
+        """Set the motors (or velocities) for the next step of ``dt`` s."""
+
+    def stop(self) -> None:
+        """Forget the command (a world reset)."""
+
+
 class DriveRobot(Protocol):
-    """What a drive plugin's ``make_robot`` gives: wheel motors the simulation sets before each step (``drive``)."""
+    """What a drive plugin's ``make_robot`` gives: motors the simulation sets before each step (``drive``), the wheel
+    joints they turn (none for a planar move), and the limits velocity commands are clamped to (``params``)."""
 
     model: BuiltModel
     config: object
     params: DiffDriveParams
-    drive: DiffDriveController
+    drive: Motors
     wheels: Tuple[JointHandle, ...]
 
     def reset_odometry(self, now: float) -> None:
