@@ -19,6 +19,7 @@ from turtle_sim_ode.ros.plugins import (
     laser,
     p3d,
     planar_move,
+    range_finder,
     skid_steer_drive,
     velodyne,
 )
@@ -28,6 +29,7 @@ from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.plugins.imu import ImuConfig
 from turtle_sim_ode.sensors.plugins.laser import LaserConfig
+from turtle_sim_ode.sensors.plugins.range_finder import RangeConfig
 from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
 from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
@@ -49,6 +51,7 @@ ADAPTERS: Dict[type, Adapter] = {
     ContactConfig: bumper.interfaces,
     CameraConfig: camera.interfaces,
     VelodyneConfig: velodyne.interfaces,
+    RangeConfig: range_finder.interfaces,
     HectorImuConfig: hector_imu.interfaces,
 }
 

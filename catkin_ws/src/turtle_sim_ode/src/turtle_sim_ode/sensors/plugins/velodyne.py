@@ -6,13 +6,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import List, Optional, Tuple
+from typing import List, Tuple
 
 import numpy as np
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
-from turtle_sim_ode.sensors.sensor_element import number_at, rate_at, sensor_pose
+from turtle_sim_ode.models.text import ModelError, plugin_params, read_number
+from turtle_sim_ode.sensors.sensor_element import ray_grid
 
 SENSOR_PLUGINS = {
     "libgazebo_ros_velodyne_laser.so": ("ray",),
@@ -62,23 +62,10 @@ class VelodyneConfig:
         return self.samples * self.vertical_samples
 
 
-def _count(element: Optional[Element], what: str) -> int:
-    samples = int(number_at(element, "samples", 1, what))
-    resolution = number_at(element, "resolution", 1.0, what)
-    count = int(round(samples * resolution)) if resolution > 1 else samples  # Gazebo: resolution < 1 is samples
-    if count < 1:
-        raise ModelError(f"{what} <samples> x <resolution> must be at least 1, got {count}")
-    return count
-
-
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> VelodyneConfig:
     name = sensor.get("name", "velodyne")
     what = f"<sensor name='{name}'>"
-    ray = sensor.find("ray")
-    horizontal = None if ray is None else ray.find("scan/horizontal")
-    vertical = None if ray is None else ray.find("scan/vertical")
-    noise = None if ray is None else ray.find("noise")
-    gaussian = noise is not None and (child_text(noise, "type") or "gaussian").lower() == "gaussian"
+    grid = ray_grid(sensor, what)
     params = plugin_params(plugin)
     plugin_what = f"{what} <plugin filename='{plugin.get('filename')}'>"
 
@@ -94,18 +81,7 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ve
     config = VelodyneConfig(
         link=link,
         name=name,
-        samples=_count(horizontal, what + " <horizontal>"),
-        min_angle=number_at(horizontal, "min_angle", 0.0, what),
-        max_angle=number_at(horizontal, "max_angle", 0.0, what),
-        vertical_samples=_count(vertical, what + " <vertical>"),
-        vertical_min_angle=number_at(vertical, "min_angle", 0.0, what),
-        vertical_max_angle=number_at(vertical, "max_angle", 0.0, what),
-        range_min=number_at(ray, "range/min", 0.0, what),
-        range_max=number_at(ray, "range/max", 0.0, what),
-        update_rate=rate_at(sensor, ("update_rate",), 0.0, what),
-        pose=sensor_pose(sensor, what),
-        noise_mean=number_at(noise, "mean", 0.0, what) if gaussian else 0.0,
-        noise_stddev=number_at(noise, "stddev", 0.0, what) if gaussian else 0.0,
+        **grid,  # type: ignore[arg-type]
         topic=(params.get("topicName") or "/points").strip(),
         frame=(params.get("frameName") or "/world").strip(),
         min_range=tag("min_range", 0.0),
@@ -115,14 +91,8 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ve
         organize_cloud=organize in ("true", "1"),
         robot_namespace=(params.get("robotNamespace") or "/").strip(),
     )
-    if not 0 <= config.range_min < config.range_max:
-        raise ModelError(f"{what}: need 0 <= <range><min> < <max>, got {config.range_min}, {config.range_max}")
-    if config.max_angle < config.min_angle or config.vertical_max_angle < config.vertical_min_angle:
-        raise ModelError(f"{what}: a <max_angle> is below its <min_angle>")
     if config.rays > MAX_RAYS:
         raise ModelError(f"{what}: {config.rays} rays a scan, more than {MAX_RAYS}")
-    if config.noise_stddev < 0:
-        raise ModelError(f"{what} <noise><stddev> must be >= 0, got {config.noise_stddev}")
     return config
 
 
