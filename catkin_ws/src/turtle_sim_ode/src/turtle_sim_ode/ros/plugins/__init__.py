@@ -9,6 +9,7 @@ from typing import Callable, Dict, List, Optional
 
 from turtle_sim_ode.ros.periodic import Advertising, ModelContext, Periodic, TopicCheck
 from turtle_sim_ode.ros.plugins import (
+    block_laser,
     bumper,
     camera,
     diff_drive,
@@ -25,6 +26,7 @@ from turtle_sim_ode.ros.plugins import (
 )
 from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import PackedPublisher, release
+from turtle_sim_ode.sensors.plugins.block_laser import BlockLaserConfig
 from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.plugins.imu import ImuConfig
@@ -52,6 +54,7 @@ ADAPTERS: Dict[type, Adapter] = {
     CameraConfig: camera.interfaces,
     VelodyneConfig: velodyne.interfaces,
     RangeConfig: range_finder.interfaces,
+    BlockLaserConfig: block_laser.interfaces,
     HectorImuConfig: hector_imu.interfaces,
 }
 

@@ -7,10 +7,10 @@ from __future__ import annotations
 from typing import Callable, Dict, List, NamedTuple, Optional, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.sensors.plugins import bumper, camera, imu, laser, range_finder, velodyne
+from turtle_sim_ode.sensors.plugins import block_laser, bumper, camera, imu, laser, range_finder, velodyne
 
 SIMULATED_TYPES = ("ray", "gpu_ray", "imu", "contact", "camera", "depth")
-MODULES = (laser, velodyne, range_finder, imu, bumper, camera)
+MODULES = (laser, velodyne, range_finder, block_laser, imu, bumper, camera)
 
 
 class SensorPlugin(NamedTuple):
