@@ -74,6 +74,8 @@ class Simulation(WorldControl):
         # The loaded world's sun direction and sky colour for the cameras (None: Gazebo's defaults).
         self.light_direction: Optional[Vec3] = None
         self.sky_colour: Optional[Tuple[float, float, float]] = None
+        # The loaded world's <spherical_coordinates> (latitude_deg, longitude_deg, elevation, heading_deg); GPS plugins.
+        self.spherical_coordinates: Optional[Tuple[float, float, float, float]] = None
         # What the cameras see of the models (their visuals), whose meshes are read through ``resources``.
         self.scene = Scene(self.models)
 
@@ -191,6 +193,7 @@ class Simulation(WorldControl):
         old_params, old_rate = self.physics.params, self.max_update_rate
         self.physics.set_params(params)
         self.light_direction, self.sky_colour = world.light_direction, world.background
+        self.spherical_coordinates = world.spherical_coordinates
         self.max_update_rate = rate
         warnings = list(world.warnings)
         includes = world.includes
@@ -210,6 +213,7 @@ class Simulation(WorldControl):
             self.physics.set_params(old_params)
             self.max_update_rate = old_rate
             self.light_direction, self.sky_colour = None, None
+            self.spherical_coordinates = None
             raise
         for include in includes:
             named = f" (model '{include.name}')" if include.name else ""

@@ -13,6 +13,7 @@ from turtle_sim_ode.ros.plugins import (
     bumper,
     camera,
     diff_drive,
+    hector_gps,
     hector_imu,
     imu,
     joint_state_publisher,
@@ -34,6 +35,7 @@ from turtle_sim_ode.sensors.plugins.laser import LaserConfig
 from turtle_sim_ode.sensors.plugins.range_finder import RangeConfig
 from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
+from turtle_sim_ode.world.plugins.hector_gps import HectorGpsConfig
 from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
 from turtle_sim_ode.world.plugins.planar_move import PlanarMoveConfig
@@ -56,6 +58,7 @@ ADAPTERS: Dict[type, Adapter] = {
     RangeConfig: range_finder.interfaces,
     BlockLaserConfig: block_laser.interfaces,
     HectorImuConfig: hector_imu.interfaces,
+    HectorGpsConfig: hector_gps.interfaces,
 }
 
 

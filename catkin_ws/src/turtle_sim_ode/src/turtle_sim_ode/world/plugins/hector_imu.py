@@ -11,24 +11,13 @@ from dataclasses import dataclass, field
 from typing import Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, Quat, quat_from_rpy, quat_multiply, quat_rotate
-from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.models.text import read_number
 from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.world.plugins.hector_sensor_model import ErrorModel, SensorError, Vec3, error_model, vector_tag
 from turtle_sim_ode.world.plugins.tags import text
 
 HECTOR_IMU = "libhector_gazebo_ros_imu.so"
 MODEL_PLUGINS = (HECTOR_IMU,)
-Vec3 = Tuple[float, float, float]
-
-
-@dataclass(frozen=True)
-class ErrorModel:
-    """SensorModel_'s parameters of one quantity (3 axes; yaw uses the first)."""
-
-    offset: Vec3 = (0.0, 0.0, 0.0)
-    drift: Vec3 = (0.0, 0.0, 0.0)
-    drift_frequency: Vec3 = (1.0 / 3600.0,) * 3  # SensorModel_(): a time constant of one hour
-    gaussian_noise: Vec3 = (0.0, 0.0, 0.0)
-    scale_error: Vec3 = (1.0, 1.0, 1.0)
 
 
 @dataclass(frozen=True)
@@ -46,33 +35,9 @@ class HectorImuConfig:
     robot_namespace: str = ""
 
 
-def _vector(plugin: GazeboPlugin, tag: str, default: Vec3, minimum: float = -math.inf) -> Vec3:
-    given = plugin.params.get(tag)
-    if given is None or not given.strip():
-        return default
-    parts = given.split()
-    if len(parts) == 1:  # a yaw model's scalar
-        parts = parts * 3
-    if len(parts) != 3:
-        raise ModelError(f"{plugin.filename} <{tag}> must be 1 or 3 numbers, got '{given}'")
-    return tuple(read_number(part, f"{plugin.filename} <{tag}>", minimum=minimum) for part in parts)  # type: ignore
-
-
-def _error_model(plugin: GazeboPlugin, prefix: str) -> ErrorModel:
-    """SensorModel_::Load with a prefix: <prefixOffset>, Drift, DriftFrequency, GaussianNoise, ScaleError."""
-    base = ErrorModel()
-    return ErrorModel(
-        offset=_vector(plugin, prefix + "Offset", base.offset),
-        drift=_vector(plugin, prefix + "Drift", base.drift, 0.0),
-        drift_frequency=_vector(plugin, prefix + "DriftFrequency", base.drift_frequency, 0.0),
-        gaussian_noise=_vector(plugin, prefix + "GaussianNoise", base.gaussian_noise, 0.0),
-        scale_error=_vector(plugin, prefix + "ScaleError", base.scale_error),
-    )
-
-
 def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> HectorImuConfig:
     topic = text(plugin, "topicName", "imu")
-    accel, rate = _error_model(plugin, "accel"), _error_model(plugin, "rate")
+    accel, rate = error_model(plugin, "accel"), error_model(plugin, "rate")
     noise = read_number(plugin.params.get("gaussianNoise"), f"{plugin.filename} <gaussianNoise>", 0.0, 0.0)
     if noise:  # "also use old configuration variables from gazebo_ros_imu"
         accel = ErrorModel(accel.offset, accel.drift, accel.drift_frequency, (noise,) * 3, accel.scale_error)
@@ -87,47 +52,11 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         service=text(plugin, "serviceName", topic + "/calibrate"),
         accel=accel,
         rate=rate,
-        yaw=_error_model(plugin, "yaw"),
-        rpy_offset=_vector(plugin, "rpyOffset", (0.0, 0.0, 0.0)),
+        yaw=error_model(plugin, "yaw"),
+        rpy_offset=vector_tag(plugin, "rpyOffset", (0.0, 0.0, 0.0)),
         update_rate=1.0 / period if period > 0 else update_rate,
         robot_namespace=text(plugin, "robotNamespace", ""),
     )
-
-
-class SensorError:
-    """SensorModel_ of one quantity: ``apply(value, dt)`` = value * scale + offset + drift + white noise, the drift
-    a first-order Gauss-Markov process (exp(-dt f) drift + dt N(0, sqrt(2 f) drift_stddev))."""
-
-    def __init__(self, model: ErrorModel, rng: random.Random) -> None:
-        self.model = model
-        self._rng = rng
-        self.current_drift: Vec3 = (0.0, 0.0, 0.0)
-        self.reset()
-
-    def reset(self, drift: Optional[Vec3] = None) -> None:
-        """reset(): a drift drawn from N(0, drift); reset(value): that drift (the calibrate and set-bias services)."""
-        if drift is None:
-            drift = tuple(self._rng.gauss(0.0, sigma) if sigma else 0.0 for sigma in self.model.drift)  # type: ignore
-        self.current_drift = drift
-
-    @property
-    def bias(self) -> Vec3:
-        """getCurrentBias: drift + offset."""
-        return tuple(d + o for d, o in zip(self.current_drift, self.model.offset))  # type: ignore[return-value]
-
-    def apply(self, value: Vec3, dt: float) -> Vec3:
-        m, gauss = self.model, self._rng.gauss
-        drift = []
-        result = []
-        for axis in range(3):
-            frequency, sigma, noise = m.drift_frequency[axis], m.drift[axis], m.gaussian_noise[axis]
-            walk = gauss(0.0, math.sqrt(2 * frequency) * sigma) if sigma and frequency else 0.0
-            current = math.exp(-dt * frequency) * self.current_drift[axis] + dt * walk
-            drift.append(current)
-            error = m.offset[axis] + current + (gauss(0.0, noise) if noise else 0.0)
-            result.append(value[axis] * m.scale_error[axis] + error)
-        self.current_drift = tuple(drift)  # type: ignore[assignment]
-        return tuple(result)  # type: ignore[return-value]
 
 
 @dataclass(frozen=True)
