@@ -13,6 +13,7 @@ from turtle_sim_ode.ros.plugins import (
     bumper,
     camera,
     diff_drive,
+    force,
     hector_gps,
     hector_imu,
     imu,
@@ -35,6 +36,7 @@ from turtle_sim_ode.sensors.plugins.laser import LaserConfig
 from turtle_sim_ode.sensors.plugins.range_finder import RangeConfig
 from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
+from turtle_sim_ode.world.plugins.force import ForceConfig
 from turtle_sim_ode.world.plugins.hector_gps import HectorGpsConfig
 from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
@@ -59,6 +61,7 @@ ADAPTERS: Dict[type, Adapter] = {
     BlockLaserConfig: block_laser.interfaces,
     HectorImuConfig: hector_imu.interfaces,
     HectorGpsConfig: hector_gps.interfaces,
+    ForceConfig: force.interfaces,
 }
 
 

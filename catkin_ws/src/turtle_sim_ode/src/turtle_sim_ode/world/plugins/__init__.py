@@ -15,6 +15,7 @@ from turtle_sim_ode.sensors.config import SensorBlocks
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 from turtle_sim_ode.world.plugins import (
     diff_drive,
+    force,
     hector_gps,
     hector_imu,
     imu,
@@ -34,7 +35,18 @@ __all__ = ["DIFF_DRIVE", "IMU", "JOINT_STATE_PUBLISHER", "KOBUKI", "P3D", "DRIVE
 __all__ += ["DiffDriveRobot", "DriveRobot", "DriveConfig", "GroundTruthConfig", "JointStatesConfig", "ModelPlugins"]
 __all__ += ["find_body", "read_plugins", "unsupported_warning"]
 
-MODULES = (kobuki, diff_drive, skid_steer_drive, planar_move, p3d, joint_state_publisher, imu, hector_imu, hector_gps)
+MODULES = (
+    kobuki,
+    diff_drive,
+    skid_steer_drive,
+    planar_move,
+    p3d,
+    joint_state_publisher,
+    imu,
+    hector_imu,
+    hector_gps,
+    force,
+)
 MODEL_PLUGINS: Dict[str, Callable[[str, GazeboPlugin, Mapping[str, object]], object]] = {
     name: module.read for module in MODULES for name in module.MODEL_PLUGINS
 }
