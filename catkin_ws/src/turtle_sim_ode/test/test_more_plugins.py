@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The holonomic base of models/holonomic_bot.urdf through ROS: planar move on /cmd_vel and /odom
 (GazeboRosPlanarMove), the downward sonar's sensor_msgs/Range (GazeboRosRange), the block laser's
-sensor_msgs/PointCloud (GazeboRosBlockLaser) and the hector GPS's NavSatFix (GazeboRosGps)."""
+sensor_msgs/PointCloud (GazeboRosBlockLaser), the hector GPS's NavSatFix (GazeboRosGps) and a triggered camera's
+one frame a trigger (GazeboRosTriggeredCamera)."""
 import math
 import unittest
 
@@ -9,7 +10,8 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from sensor_msgs.msg import NavSatFix, PointCloud, Range
+from sensor_msgs.msg import Image, NavSatFix, PointCloud, Range
+from std_msgs.msg import Empty
 
 WAIT = 90.0
 
@@ -36,6 +38,23 @@ class MorePlugins(unittest.TestCase):
         self.assertAlmostEqual(fix.latitude, 47.0, delta=1e-4)
         self.assertAlmostEqual(fix.longitude, 8.5, delta=1e-4)
         self.assertEqual(fix.position_covariance_type, NavSatFix.COVARIANCE_TYPE_DIAGONAL_KNOWN)
+
+    def test_5_triggered_camera_sends_a_frame_a_trigger(self):
+        images = []
+        rospy.Subscriber("/front/image_raw", Image, images.append)
+        trigger = rospy.Publisher("/front/image_trigger", Empty, queue_size=10)
+        began = rospy.get_time()
+        while rospy.get_time() - began < 1.0 and not rospy.is_shutdown():
+            rospy.sleep(0.1)  # sim time: untriggered, the camera sends nothing
+        self.assertEqual(images, [])
+        while trigger.get_num_connections() == 0 and not rospy.is_shutdown():
+            rospy.sleep(0.1)
+        trigger.publish(Empty())
+        began = rospy.get_time()
+        while rospy.get_time() - began < 2.0 and not rospy.is_shutdown():
+            rospy.sleep(0.1)
+        self.assertEqual(len(images), 1)
+        self.assertEqual((images[0].width, images[0].height, images[0].header.frame_id), (8, 6, "mast"))
 
     def test_4_planar_move_goes_sideways(self):
         start = rospy.wait_for_message("/odom", Odometry, WAIT)

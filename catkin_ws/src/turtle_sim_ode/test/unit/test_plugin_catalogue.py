@@ -51,3 +51,15 @@ def test_a_laser_plugin_in_a_sensor_of_another_type_is_not_loaded() -> None:
     sdf = RAY_SDF.format(name="cam", filename="libgazebo_ros_laser.so").replace('type="ray"', 'type="imu"')
     warnings = Simulation().spawn_sdf("lidar", sdf)
     assert any("libgazebo_ros_laser.so (sensor 'cam')" in warning for warning in warnings), warnings
+
+
+def test_a_triggered_camera_reads_its_trigger_topic() -> None:
+    """gazebo_ros_camera_utils.cpp: <triggerTopicName>, default image_trigger; the other tags as a camera's."""
+    camera = """<sdf version="1.6"><model name="cam"><static>true</static><link name="link">
+      <sensor type="camera" name="cam"><camera><image><width>8</width><height>6</height></image></camera>
+        <plugin name="c" filename="libgazebo_ros_triggered_camera.so">{tags}<cameraName>front</cameraName></plugin>
+      </sensor></link></model></sdf>"""
+    (config,) = read_sdf_sensors(camera.format(tags="")).configs
+    assert config.triggered and config.trigger_topic == "image_trigger" and config.camera_name == "front"
+    (config,) = read_sdf_sensors(camera.format(tags="<triggerTopicName>shoot</triggerTopicName>")).configs
+    assert config.trigger_topic == "shoot" and (config.width, config.height) == (8, 6)

@@ -10,7 +10,9 @@ from xml.etree.ElementTree import Element
 from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
 from turtle_sim_ode.sensors.sensor_element import int_at, number_at, rate_at, sensor_pose
 
-CAMERA_PLUGINS = ("libgazebo_ros_camera.so",)
+# gazebo_ros_triggered_camera: a frame for each message on <triggerTopicName> (image_trigger), as camera_utils has it.
+TRIGGERED_CAMERA = "libgazebo_ros_triggered_camera.so"
+CAMERA_PLUGINS = ("libgazebo_ros_camera.so", TRIGGERED_CAMERA)
 DEPTH_PLUGINS = ("libgazebo_ros_openni_kinect.so", "libgazebo_ros_depth_camera.so")
 SENSOR_PLUGINS = {**{name: ("camera",) for name in CAMERA_PLUGINS}, **{name: ("depth",) for name in DEPTH_PLUGINS}}
 # <image><format> -> sensor_msgs encoding (gazebo_ros_camera_utils' names); the others fall back to rgb8.
@@ -56,6 +58,8 @@ class CameraConfig:
     info_cy: float = 0.0
     hack_baseline: float = 0.0
     distortion: Tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)
+    triggered: bool = False  # libgazebo_ros_triggered_camera.so: frames only when triggered
+    trigger_topic: str = "image_trigger"
 
     @property
     def encoding(self) -> str:
@@ -145,6 +149,8 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ca
         cutoff_max=cutoff_max,
         pose=sensor_pose(sensor, what),
         robot_namespace=params.get("robotNamespace", ""),
+        triggered=plugin.get("filename") == TRIGGERED_CAMERA,
+        trigger_topic=params.get("triggerTopicName") or "image_trigger",
         info_focal_length=given_focal,
         info_cx=tag("Cx"),
         info_cy=tag("Cy"),
