@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The holonomic base of models/holonomic_bot.urdf through ROS: planar move on /cmd_vel and /odom
 (GazeboRosPlanarMove), the downward sonar's sensor_msgs/Range (GazeboRosRange), the block laser's
-sensor_msgs/PointCloud (GazeboRosBlockLaser), the hector GPS's NavSatFix (GazeboRosGps) and a triggered camera's
-one frame a trigger (GazeboRosTriggeredCamera)."""
+sensor_msgs/PointCloud (GazeboRosBlockLaser), the hector GPS's NavSatFix (GazeboRosGps) a triggered camera's
+one frame a trigger (GazeboRosTriggeredCamera) and a stereo head's pairs (GazeboRosMultiCamera)."""
 import math
 import unittest
 
@@ -10,7 +10,7 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from sensor_msgs.msg import Image, NavSatFix, PointCloud, Range
+from sensor_msgs.msg import CameraInfo, Image, NavSatFix, PointCloud, Range
 from std_msgs.msg import Empty
 
 WAIT = 90.0
@@ -55,6 +55,18 @@ class MorePlugins(unittest.TestCase):
             rospy.sleep(0.1)
         self.assertEqual(len(images), 1)
         self.assertEqual((images[0].width, images[0].height, images[0].header.frame_id), (8, 6, "mast"))
+
+    def test_6_stereo_pairs_share_their_stamps(self):
+        left, right = [], []
+        rospy.Subscriber("/stereo/left/image_raw", Image, left.append)
+        rospy.Subscriber("/stereo/right/image_raw", Image, right.append)
+        info = rospy.wait_for_message("/stereo/right/camera_info", CameraInfo, WAIT)
+        self.assertAlmostEqual(info.P[3], -info.P[0] * 0.07, places=6)  # the right camera's baseline
+        began = rospy.get_time()
+        while rospy.get_time() - began < 1.0 and not rospy.is_shutdown():
+            rospy.sleep(0.1)
+        common = {m.header.stamp for m in left} & {m.header.stamp for m in right}
+        self.assertGreaterEqual(len(common), 5, "left and right frames with one stamp: %d" % len(common))
 
     def test_4_planar_move_goes_sideways(self):
         start = rospy.wait_for_message("/odom", Odometry, WAIT)

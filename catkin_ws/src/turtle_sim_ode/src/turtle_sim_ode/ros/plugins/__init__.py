@@ -33,6 +33,7 @@ from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.plugins.imu import ImuConfig
 from turtle_sim_ode.sensors.plugins.laser import LaserConfig
+from turtle_sim_ode.sensors.plugins.multicamera import MultiCameraConfig
 from turtle_sim_ode.sensors.plugins.range_finder import RangeConfig
 from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
@@ -56,6 +57,7 @@ ADAPTERS: Dict[type, Adapter] = {
     LaserConfig: laser.interfaces,
     ContactConfig: bumper.interfaces,
     CameraConfig: camera.interfaces,
+    MultiCameraConfig: camera.multicamera_interfaces,
     VelodyneConfig: velodyne.interfaces,
     RangeConfig: range_finder.interfaces,
     BlockLaserConfig: block_laser.interfaces,

@@ -14,6 +14,7 @@ from turtle_sim_ode.ros.periodic import ModelContext, Periodic, subscriber, topi
 from turtle_sim_ode.ros.wire import release
 from turtle_sim_ode.sensors.camera import CameraSensor
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
+from turtle_sim_ode.sensors.plugins.multicamera import MultiCameraConfig
 from turtle_sim_ode.sensors.scene import Scene
 
 
@@ -49,3 +50,8 @@ def interfaces(context: ModelContext, config: CameraConfig) -> List[Periodic]:
     sensor = CameraSensor(sim.physics, context.model, config, sun_direction=sim.light_direction, sky=sim.sky_colour)
     kind = TriggeredCameraPublisher if config.triggered else CameraPublisher
     return [kind(sensor, sim.scene, context.namespace)]
+
+
+def multicamera_interfaces(context: ModelContext, config: MultiCameraConfig) -> List[Periodic]:
+    """gazebo_ros_multicamera: a camera's topics for each of its cameras, on one schedule (identical stamps)."""
+    return [interface for single in config.cameras for interface in interfaces(context, single)]

@@ -7,10 +7,19 @@ from __future__ import annotations
 from typing import Callable, Dict, List, NamedTuple, Optional, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.sensors.plugins import block_laser, bumper, camera, imu, laser, range_finder, velodyne
+from turtle_sim_ode.sensors.plugins import (
+    block_laser,
+    bumper,
+    camera,
+    imu,
+    laser,
+    multicamera,
+    range_finder,
+    velodyne,
+)
 
-SIMULATED_TYPES = ("ray", "gpu_ray", "imu", "contact", "camera", "depth")
-MODULES = (laser, velodyne, range_finder, block_laser, imu, bumper, camera)
+SIMULATED_TYPES = ("ray", "gpu_ray", "imu", "contact", "camera", "depth", "multicamera")
+MODULES = (laser, velodyne, range_finder, block_laser, imu, bumper, camera, multicamera)
 
 
 class SensorPlugin(NamedTuple):
