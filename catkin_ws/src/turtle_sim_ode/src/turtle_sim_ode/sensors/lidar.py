@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 import random
-from typing import List, Optional, Protocol, Tuple
+from typing import List, Optional, Tuple
 
 import numpy as np
 
@@ -16,26 +16,9 @@ from turtle_sim_ode.sensors.ray_kernel import PLANE, MeshItem, cast_rays, mesh_p
 from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
 from turtle_sim_ode.sensors.raycast import Primitive, hit_plane, hit_triangle, mesh_triangles
 from turtle_sim_ode.sensors.rays import world_geoms
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig
 
 NO_COLOUR = (0.0, 0.0, 0.0)
-
-
-class RayGridConfig(Protocol):
-    """A multi-beam sensor's config (sensors.sensor_element.ray_grid's fields on a link): VelodyneConfig,
-    RangeConfig."""
-
-    link: str
-    samples: int
-    min_angle: float
-    max_angle: float
-    vertical_samples: int
-    vertical_min_angle: float
-    vertical_max_angle: float
-    range_min: float
-    range_max: float
-    pose: Tuple[float, float, float, float, float, float]
-    noise_mean: float
-    noise_stddev: float
 
 
 def grid_angles(count: int, low: float, high: float) -> np.ndarray:

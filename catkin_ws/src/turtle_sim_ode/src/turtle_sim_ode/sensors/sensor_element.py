@@ -3,6 +3,7 @@ and a message naming the sensor and the tag."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Dict, Optional, Sequence, Tuple
 from xml.etree.ElementTree import Element
 
@@ -48,6 +49,31 @@ def int_at(element: Optional[Element], path: str, default: int, what: str) -> in
     if not 1 <= value <= 8192:
         raise ModelError(f"{what} <{path}> must be in 1..8192, got {value}")
     return value
+
+
+@dataclass(frozen=True)
+class RayGridConfig:
+    """A ray sensor on ``link`` with its grid of rays (``ray_grid``'s fields): the base of the multi-beam plugins'
+    configs, and what sensors.lidar casts."""
+
+    link: str
+    name: str
+    samples: int  # horizontal rays
+    min_angle: float
+    max_angle: float
+    vertical_samples: int
+    vertical_min_angle: float
+    vertical_max_angle: float
+    range_min: float  # where rays start and end
+    range_max: float
+    update_rate: float  # Hz of sim time; 0 = every step
+    pose: Tuple[float, float, float, float, float, float]
+    noise_mean: float  # the sensor's <noise> on every range
+    noise_stddev: float
+
+    @property
+    def rays(self) -> int:
+        return self.samples * self.vertical_samples
 
 
 def ray_count(element: Optional[Element], what: str) -> int:

@@ -10,7 +10,7 @@ from xml.etree.ElementTree import Element
 import numpy as np
 
 from turtle_sim_ode.models.text import ModelError, plugin_params, read_number
-from turtle_sim_ode.sensors.sensor_element import ray_grid
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid
 
 SENSOR_PLUGINS = {"libgazebo_ros_block_laser.so": ("ray", "gpu_ray")}
 MAX_RAYS = 100_000
@@ -18,21 +18,7 @@ EPSILON_DIFF = 0.000001  # gazebo_ros_block_laser.h: a range this close to the m
 
 
 @dataclass(frozen=True)
-class BlockLaserConfig:
-    link: str
-    name: str
-    samples: int
-    min_angle: float
-    max_angle: float
-    vertical_samples: int
-    vertical_min_angle: float
-    vertical_max_angle: float
-    range_min: float
-    range_max: float
-    update_rate: float
-    pose: Tuple[float, float, float, float, float, float]
-    noise_mean: float
-    noise_stddev: float
+class BlockLaserConfig(RayGridConfig):
     topic: str = "/world"  # sic: Load's default
     frame: str = "/world"
     gaussian_noise: float = 0.0
@@ -53,8 +39,8 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Bl
         gaussian_noise=read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
         robot_namespace=params.get("robotNamespace") or "",
     )
-    if config.samples * config.vertical_samples > MAX_RAYS:
-        raise ModelError(f"{what}: {config.samples * config.vertical_samples} rays, more than {MAX_RAYS}")
+    if config.rays > MAX_RAYS:
+        raise ModelError(f"{what}: {config.rays} rays, more than {MAX_RAYS}")
     return config
 
 

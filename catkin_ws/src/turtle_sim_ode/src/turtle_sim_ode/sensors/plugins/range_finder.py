@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import List, Tuple
+from typing import List
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, plugin_params, read_number
-from turtle_sim_ode.sensors.sensor_element import ray_grid
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid
 
 SENSOR_PLUGINS = {"libgazebo_ros_range.so": ("ray", "gpu_ray")}
 MAX_RAYS = 10_000
@@ -17,21 +17,7 @@ ULTRASOUND, INFRARED = 0, 1  # sensor_msgs/Range radiation types
 
 
 @dataclass(frozen=True)
-class RangeConfig:
-    link: str
-    name: str
-    samples: int
-    min_angle: float
-    max_angle: float
-    vertical_samples: int
-    vertical_min_angle: float
-    vertical_max_angle: float
-    range_min: float
-    range_max: float
-    update_rate: float  # the sensor's, Hz of sim time
-    pose: Tuple[float, float, float, float, float, float]
-    noise_mean: float
-    noise_stddev: float
+class RangeConfig(RayGridConfig):
     topic: str = "/range"
     frame: str = "/world"
     radiation: int = ULTRASOUND  # "ultrasound", anything else infrared
@@ -58,8 +44,8 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ra
         plugin_rate=read_number(params.get("updateRate"), f"{plugin_what} <updateRate>", 0.0, 0.0),
         robot_namespace=params.get("robotNamespace") or "",
     )
-    if config.samples * config.vertical_samples > MAX_RAYS:
-        raise ModelError(f"{what}: {config.samples * config.vertical_samples} rays, more than {MAX_RAYS}")
+    if config.rays > MAX_RAYS:
+        raise ModelError(f"{what}: {config.rays} rays, more than {MAX_RAYS}")
     if not math.isfinite(config.range_max):
         raise ModelError(f"{what}: <range><max> must be finite")
     return config

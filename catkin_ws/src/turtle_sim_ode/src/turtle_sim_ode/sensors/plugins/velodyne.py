@@ -12,7 +12,7 @@ import numpy as np
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, plugin_params, read_number
-from turtle_sim_ode.sensors.sensor_element import ray_grid
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid
 
 SENSOR_PLUGINS = {
     "libgazebo_ros_velodyne_laser.so": ("ray",),
@@ -33,21 +33,7 @@ MAX_RAYS = 300_000
 
 
 @dataclass(frozen=True)
-class VelodyneConfig:
-    link: str
-    name: str
-    samples: int  # horizontal rays (rangeCount: <samples> x <resolution>)
-    min_angle: float
-    max_angle: float
-    vertical_samples: int  # lasers (rings)
-    vertical_min_angle: float
-    vertical_max_angle: float
-    range_min: float  # the sensor's <range>: where rays start and end
-    range_max: float
-    update_rate: float  # Hz of sim time; 0 = every step
-    pose: Tuple[float, float, float, float, float, float]
-    noise_mean: float  # the sensor's <noise> on every range
-    noise_stddev: float
+class VelodyneConfig(RayGridConfig):
     topic: str = "/points"
     frame: str = "/world"
     min_range: float = 0.0  # the plugin's band: points with min_range < r < max_range only
@@ -56,10 +42,6 @@ class VelodyneConfig:
     gaussian_noise: float = 0.0
     organize_cloud: bool = False
     robot_namespace: str = "/"
-
-    @property
-    def rays(self) -> int:
-        return self.samples * self.vertical_samples
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> VelodyneConfig:
