@@ -115,4 +115,4 @@ class Smb(unittest.TestCase):
 
 if __name__ == "__main__":
     rospy.init_node("test_smb")
-    rostest.rosrun("turtle_sim_ode", "smb", Smb)
+    rostest.rosrun("turtle_sim_ode_smb", "smb", Smb)
