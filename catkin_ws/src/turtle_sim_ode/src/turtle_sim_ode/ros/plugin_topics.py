@@ -144,7 +144,7 @@ class DriveInterface(Periodic):
         name: str,
         robot: DiffDriveRobot,
         settings: SimulatorSettings,
-        tf_broadcaster: PackedPublisher,
+        tf_broadcaster: Optional[PackedPublisher],
         sim: Simulation,
         namespace: str,
     ) -> None:
@@ -513,7 +513,7 @@ def model_interfaces(
     name: str,
     sim: Simulation,
     settings: SimulatorSettings,
-    tf_broadcaster: PackedPublisher,
+    tf_broadcaster: Optional[PackedPublisher],
     namespace: str,
     check_topic: Optional[TopicCheck] = None,
 ) -> List[Periodic]:
@@ -538,7 +538,7 @@ def _add_interfaces(
     name: str,
     sim: Simulation,
     settings: SimulatorSettings,
-    tf_broadcaster: PackedPublisher,
+    tf_broadcaster: Optional[PackedPublisher],
     namespace: str,
     interfaces: List[Periodic],
 ) -> None:

@@ -243,9 +243,12 @@ class WorldControl:
         linear: Sequence[float],
         angular: Sequence[float],
         reference_frame: str,
+        moving_frame: bool = True,
     ) -> Tuple[Transform, Vec3, Vec3]:
         """Validated world pose and twist from ones relative to ``reference_frame`` (the
-        inverse of ``_relative``); the position must be within MAX_LENGTH of the world origin."""
+        inverse of ``_relative``); the position must be within MAX_LENGTH of the world origin.
+        ``moving_frame`` False: the twist is only turned into world axes, the frame's own velocity
+        is not added (gazebo_ros's setModelState)."""
         pose: Transform = (vec3(position, "position", MAX_LENGTH), orientation(quaternion, "orientation"))
         velocity = vec3(linear, "linear velocity", MAX_SPEED)
         spin = vec3(angular, "angular velocity", MAX_SPEED)
@@ -253,8 +256,10 @@ class WorldControl:
         if frame is not None:
             frame_pose, frame_linear, frame_angular = frame
             pose = compose(frame_pose, pose)
-            velocity = _add(quat_rotate(frame_pose[1], velocity), frame_linear)
-            spin = _add(quat_rotate(frame_pose[1], spin), frame_angular)
+            velocity = quat_rotate(frame_pose[1], velocity)
+            spin = quat_rotate(frame_pose[1], spin)
+            if moving_frame:
+                velocity, spin = _add(velocity, frame_linear), _add(spin, frame_angular)
             vec3(pose[0], f"position relative to the world (from '{reference_frame}')", MAX_LENGTH)
         return pose, velocity, spin
 
@@ -276,9 +281,11 @@ class WorldControl:
     ) -> None:
         """Teleport the model frame; every body then moves with the model as one rigid body
         (``linear`` is its root link origin's velocity). Joints keep their positions; a static
-        model ignores the twist."""
+        model ignores the twist. Relative to a model or link, the pose is in that frame and the
+        twist in its axes, without the frame's own velocity (gazebo_ros_api_plugin.cpp,
+        setModelState: a model stepped relative to itself comes to rest at each step)."""
         model = self._model(name)
-        pose, linear, angular = self._absolute(position, quaternion, linear, angular, reference_frame)
+        pose, linear, angular = self._absolute(position, quaternion, linear, angular, reference_frame, False)
         model.set_transform(pose)
         _set_rigid_twist(model.bodies, model.link_transform(model.root_link)[0], linear, angular)
 

@@ -8,6 +8,7 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from turtle_sim_ode.models.builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
 from turtle_sim_ode.models.includes import resolve_includes
+from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.models.meshes import load_meshes, uses_meshes
 from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.sdf import World, _rpy, parse_sdf_model
@@ -17,6 +18,7 @@ from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors
 from turtle_sim_ode.sensors.scene import Scene
 from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
+from turtle_sim_ode.world.lights import LightControl
 from turtle_sim_ode.world.plugins import ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
 from turtle_sim_ode.world.robot import DiffDriveRobot
@@ -49,7 +51,7 @@ class _Spawned:
         return cls(model.model_transform(), link_poses, {name: handle.angle() for name, handle in model.joints.items()})
 
 
-class Simulation(WorldControl):
+class Simulation(WorldControl, LightControl):
     """Models by name in one physics world, stepped with their drives and scheduled loads."""
 
     def __init__(
@@ -72,8 +74,8 @@ class Simulation(WorldControl):
         self.loads: List[Load] = []
         self._drive_overrides = dict(drive_overrides or {})
         self._spawned: Dict[str, _Spawned] = {}
-        # The loaded world's sun direction and sky colour for the cameras (None: Gazebo's defaults).
-        self.light_direction: Optional[Vec3] = None
+        # The loaded world's lights by name (see world.lights) and sky colour for the cameras (None: Gazebo's).
+        self.lights: Dict[str, Light] = {}
         self.sky_colour: Optional[Tuple[float, float, float]] = None
         # What the cameras see of the models (their visuals), whose meshes are read through ``resources``.
         self.scene = Scene(self.models)
@@ -195,7 +197,7 @@ class Simulation(WorldControl):
             rate = update_rate(sdf.real_time_factor, "world <real_time_factor>") / params.time_step
         old_params, old_rate = self.physics.params, self.max_update_rate
         self.physics.set_params(params)
-        self.light_direction, self.sky_colour = world.light_direction, world.background
+        self.lights, self.sky_colour = {light.name: light for light in world.lights}, world.background
         self.max_update_rate = rate
         warnings = list(world.warnings)
         includes = world.includes
@@ -214,7 +216,7 @@ class Simulation(WorldControl):
                 self.delete(name)
             self.physics.set_params(old_params)
             self.max_update_rate = old_rate
-            self.light_direction, self.sky_colour = None, None
+            self.lights, self.sky_colour = {}, None
             raise
         for include in includes:
             named = f" (model '{include.name}')" if include.name else ""
