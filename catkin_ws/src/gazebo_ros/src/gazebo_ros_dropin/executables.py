@@ -116,7 +116,10 @@ def run_debug(argv: Sequence[str], gzserver: str) -> int:
     the C kernels with a backtrace; without gdb, Python's faulthandler prints the stack on a fatal signal."""
     gdb = shutil.which("gdb")
     if gdb is not None:
-        os.execv(gdb, [gdb, "-ex", "run", "--args", sys.executable, gzserver] + list(argv))
+        # At a terminal gdb stays at its prompt after a crash; without one (roslaunch, tests) it prints the
+        # backtrace and ends with the server.
+        commands = ["-ex", "run"] if sys.stdin.isatty() else ["-batch", "-ex", "run", "-ex", "bt"]
+        os.execv(gdb, [gdb] + commands + ["--args", sys.executable, gzserver] + list(argv))
     print("debug: gdb is not installed: running gzserver with Python's faulthandler instead", file=sys.stderr)
     faulthandler.enable()
     return run_server(argv, "debug")
