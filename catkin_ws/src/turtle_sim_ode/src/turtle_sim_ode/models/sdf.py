@@ -23,6 +23,7 @@ from turtle_sim_ode.models.builder import (
     rpy_of,
 )
 from turtle_sim_ode.models.lights import SUN, Light, parse_light
+from turtle_sim_ode.models.world_state import WorldState, parse_world_state
 from turtle_sim_ode.models.materials import RGB, rgb_of, sdf_visual_color
 from turtle_sim_ode.models.nested import flatten_nested_models, read_pose
 from turtle_sim_ode.models.text import (
@@ -183,6 +184,7 @@ class World:
     sun: bool = False
     # The world's <light>s in order (model://sun is models.lights.SUN); <scene><background> (None: Gazebo's).
     lights: List[Light] = field(default_factory=list)
+    state: Optional[WorldState] = None  # the first <state> (see models.world_state)
     background: Optional[RGB] = None
     warnings: List[str] = field(default_factory=list)
 
@@ -662,6 +664,9 @@ def parse_sdf_world(text: str) -> World:
             world.plugins.append(_plugin(child, "<world>"))
         elif child.tag == "light":
             world.lights.append(parse_light(child))
+        elif child.tag == "state":
+            if world.state is None:
+                world.state = parse_world_state(element)
         elif child.tag == "scene":
             world.background = rgb_of(child_text(child, "background")) or world.background
         elif child.tag not in SILENT_WORLD_TAGS + ("physics", "gravity"):

@@ -324,6 +324,7 @@ def load_world(node: SimulatorNode, world_name: str) -> None:
         node.sim.max_update_rate = node.settings.real_time_factor / node.sim.physics.time_step
         for model in world.models:
             node.add_interface(model.name, "")
+        node._restart_time()  # a world's <state> may start sim time elsewhere than 0
     if warnings:  # one line, at most MAX_SHOWN_WARNINGS of them
         rospy.logwarn("world %s: %s", path, "; ".join(summarise(warnings)))
     rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, [m.name for m in world.models])

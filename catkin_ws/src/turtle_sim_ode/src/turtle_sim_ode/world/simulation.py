@@ -22,6 +22,7 @@ from turtle_sim_ode.world.lights import LightControl
 from turtle_sim_ode.world.plugins import ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
 from turtle_sim_ode.world.robot import DiffDriveRobot
+from turtle_sim_ode.world.world_state import apply_world_state
 from turtle_sim_ode.world.values import WorldError, update_rate, vector
 
 Pose6 = Tuple[float, float, float, float, float, float]
@@ -218,6 +219,10 @@ class Simulation(WorldControl, LightControl):
             self.max_update_rate = old_rate
             self.lights, self.sky_colour = {}, None
             raise
+        if world.state is not None:
+            warnings.extend(apply_world_state(world.state, self.physics, self.models, self.lights))
+            for robot in self.robots.values():  # odometry starts from the saved time and pose
+                robot.reset_odometry(self.sim_time)
         for include in includes:
             named = f" (model '{include.name}')" if include.name else ""
             warnings.append(f"cannot resolve {include.uri}{named}: not spawned")
