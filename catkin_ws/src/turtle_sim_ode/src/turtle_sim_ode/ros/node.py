@@ -27,7 +27,7 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.gazebo_api import MAX_RAYS_PER_MODEL, GazeboApi, TopicTypes, known_topic_types, summarise
 from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
 from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, sim_stamp
-from turtle_sim_ode.ros.plugin_topics import model_interfaces
+from turtle_sim_ode.ros.plugins import model_interfaces
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
 from turtle_sim_ode.ros.wire import ClockPacker, PackedPublisher, release, stamp_parts
 from turtle_sim_ode.world.simulation import Simulation
@@ -109,7 +109,7 @@ class SimulatorNode:
         if check_topic is None:
             check_topic = TopicTypes(name, known_topic_types())
         plugins = self.sim.plugins.get(name)
-        publishes_tf = plugins is not None and any(drive.publish_tf for drive in plugins.drives)
+        publishes_tf = plugins is not None and any(broadcasts_tf(drive) for drive in plugins.drives)
         if self._tf is None and self.settings.publish_tf and publishes_tf:
             self._tf = PackedPublisher("/tf", TFMessage)
         interfaces = model_interfaces(name, self.sim, self.settings, self._tf, robot_namespace, check_topic)
@@ -268,6 +268,12 @@ class SimulatorNode:
             self._step_service.shutdown()
         for interface in self._all_interfaces():
             interface.close()
+
+
+def broadcasts_tf(drive) -> bool:  # type: ignore[no-untyped-def]
+    """Whether a drive plugin's config asks for odometry on /tf (diff drive and Kobuki: publishTf/publish_tf,
+    skid steer: broadcastTF)."""
+    return bool(getattr(drive, "publish_tf", False) or getattr(drive, "broadcast_tf", False))
 
 
 def release_memory() -> None:
