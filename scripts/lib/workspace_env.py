@@ -27,17 +27,29 @@ def ensure_workspace_env(script: str, argv: list) -> None:
     if in_workspace_env():
         return
     if os.environ.get(MARK):
-        sys.exit("%s: the workspace's Python packages still do not import after sourcing %s; run scripts/build.sh"
-                 % (os.path.basename(script), os.path.join(WORKSPACE, "devel", "setup.bash")))
+        sys.exit(
+            "%s: the workspace's Python packages still do not import after sourcing %s; run scripts/build.sh"
+            % (os.path.basename(script), os.path.join(WORKSPACE, "devel", "setup.bash"))
+        )
     if not os.path.isfile(os.path.join(WORKSPACE, "devel", "setup.bash")):
-        sys.exit("%s: the workspace is not built (no catkin_ws/devel/setup.bash): run scripts/build.sh first"
-                 % os.path.basename(script))
+        sys.exit(
+            "%s: the workspace is not built (no catkin_ws/devel/setup.bash): run scripts/build.sh first"
+            % os.path.basename(script)
+        )
     # setup.bash reads the positional parameters as its own options: they are put aside before it is sourced.
     command = 'ws=$1 env_sh=$2; shift 2; args=("$@"); set --; SOURCE_WORKSPACE=$ws . "$env_sh" && exec /usr/bin/python3 "${args[@]}"'
     env = dict(os.environ, **{MARK: "1"})
     os.execve(
         "/bin/bash",
-        ["bash", "-c", command, "bash", WORKSPACE, os.path.join(REPO, "scripts", "lib", "ros_env.sh"),
-         os.path.abspath(script)] + list(argv),
+        [
+            "bash",
+            "-c",
+            command,
+            "bash",
+            WORKSPACE,
+            os.path.join(REPO, "scripts", "lib", "ros_env.sh"),
+            os.path.abspath(script),
+        ]
+        + list(argv),
         env,
     )

@@ -114,8 +114,12 @@ def test_runs_as_the_readme_shows_without_the_workspace_sourced(tmp_path, script
         pytest.skip("the workspace is not built")
     bare = {"HOME": os.environ.get("HOME", "/root"), "PATH": "/usr/local/bin:/usr/bin:/bin"}
     result = subprocess.run(
-        [os.path.join(REPO, "scripts", script), "--help"], cwd=str(tmp_path), env=bare, capture_output=True,
-        text=True, timeout=120,
+        [os.path.join(REPO, "scripts", script), "--help"],
+        cwd=str(tmp_path),
+        env=bare,
+        capture_output=True,
+        text=True,
+        timeout=120,
     )
     assert result.returncode == 0, result.stderr
     assert "usage: %s" % script in result.stdout

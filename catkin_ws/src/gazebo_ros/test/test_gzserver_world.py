@@ -50,10 +50,14 @@ class GzserverWorldTest(unittest.TestCase):
         sun = self.get_light("sun")
         self.assertTrue(sun.success)
         self.assertColour(sun.diffuse, (0.8, 0.8, 0.8, 1.0))
-        self.assertEqual((sun.attenuation_constant, sun.attenuation_linear, sun.attenuation_quadratic), (0.9, 0.01, 0.001))
+        self.assertEqual(
+            (sun.attenuation_constant, sun.attenuation_linear, sun.attenuation_quadratic), (0.9, 0.01, 0.001)
+        )
         lamp = self.get_light("lamp")
         self.assertColour(lamp.diffuse, (0.5, 0.4, 0.3, 1.0))
-        self.assertEqual((lamp.attenuation_constant, lamp.attenuation_linear, lamp.attenuation_quadratic), (0.5, 0.02, 0.003))
+        self.assertEqual(
+            (lamp.attenuation_constant, lamp.attenuation_linear, lamp.attenuation_quadratic), (0.5, 0.02, 0.003)
+        )
 
     def test_c_set_and_delete_a_light(self) -> None:
         answer = self.set_light(
@@ -98,7 +102,9 @@ class GzserverWorldTest(unittest.TestCase):
     def test_e_clear_body_wrenches_then_run(self) -> None:
         apply = service("apply_body_wrench", srv.ApplyBodyWrench)
         clear = service("clear_body_wrenches", srv.BodyRequest)
-        lifted = apply("box_a::link", "", Point(), Wrench(Vector3(0, 0, 100), Vector3()), rospy.Time(), rospy.Duration(-1))
+        lifted = apply(
+            "box_a::link", "", Point(), Wrench(Vector3(0, 0, 100), Vector3()), rospy.Time(), rospy.Duration(-1)
+        )
         self.assertTrue(lifted.success, lifted.status_message)
         clear("box_a::link")
         service("unpause_physics", Empty)()

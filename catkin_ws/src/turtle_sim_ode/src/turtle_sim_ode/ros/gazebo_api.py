@@ -112,7 +112,9 @@ class GazeboApi:
             ("get_light_properties", gz.GetLightProperties, self._get_light_properties),
             ("set_light_properties", gz.SetLightProperties, self._set_light_properties),
         ]
-        serve = {name: self._answer(name, srv_type, handler, handler != self._spawn) for name, srv_type, handler in services}
+        serve = {
+            name: self._answer(name, srv_type, handler, handler != self._spawn) for name, srv_type, handler in services
+        }
         self._services = [rospy.Service("~" + name, srv_type, serve[name]) for name, srv_type, _ in services]
         self._services += [
             rospy.Service("~pause_physics", Empty, lambda _: self._empty(lambda: self._pause(True))),

@@ -336,9 +336,7 @@ def load_world(node: SimulatorNode, world_name: str) -> None:
     rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, [m.name for m in world.models])
 
 
-def main(
-    overrides: Optional[Dict[str, object]] = None, notes: Sequence[str] = (), claim_sim_time: bool = False
-) -> int:
+def main(overrides: Optional[Dict[str, object]] = None, notes: Sequence[str] = (), claim_sim_time: bool = False) -> int:
     """Run node `gazebo`. ``overrides``: private parameters that win over the parameter server's (gazebo_ros's
     gzserver command line); ``notes``: warnings to log once the node is up (options without effect here);
     ``claim_sim_time``: set /use_sim_time true unless it is set, as gazebo_ros's API plugin does (launch files

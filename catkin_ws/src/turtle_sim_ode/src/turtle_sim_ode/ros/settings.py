@@ -163,9 +163,7 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
         model_states_rate=number_param(params, "model_states_rate", defaults.model_states_rate, 0.0, True),
         publish_tf=typed_param(params, "publish_tf", defaults.publish_tf, bool),
         enable_ros_network=typed_param(params, "enable_ros_network", defaults.enable_ros_network, bool),
-        step_simulation_service=typed_param(
-            params, "step_simulation_service", defaults.step_simulation_service, bool
-        ),
+        step_simulation_service=typed_param(params, "step_simulation_service", defaults.step_simulation_service, bool),
         spawn_pose=tuple(
             number_param(params, "spawn_" + axis, 0.0, -limit, maximum=limit) for axis, limit in SPAWN_AXES
         ),

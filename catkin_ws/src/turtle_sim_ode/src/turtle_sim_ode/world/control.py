@@ -32,6 +32,7 @@ from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsWorld
 from turtle_sim_ode.world.plugins import DriveRobot
+from turtle_sim_ode.world.joint_effort import effort_applier
 from turtle_sim_ode.world.records import (
     JointProperties,
     LinkProperties,
@@ -651,7 +652,8 @@ class WorldControl:
 
     def apply_joint_effort(self, joint: str, effort: float, start_time: float = 0.0, duration: float = -1.0) -> None:
         """Torque (revolute) or force (prismatic) along the joint axis, positive towards
-        increasing position, scheduled as ``apply_body_wrench``."""
+        increasing position, scheduled as ``apply_body_wrench``; held to the joint's velocity
+        and effort limits each step as Gazebo does (see world.joint_effort)."""
         model, handle = self._joint(joint)
         effort = finite(effort, "effort", MAX_FORCE)
         limit = sanity.effort_limit(handle.moved_inertia())
@@ -660,12 +662,9 @@ class WorldControl:
                 f"effort {effort:g} on joint '{joint}' must be at most {limit:.3g} in magnitude: it would accelerate "
                 f"what the joint moves beyond {sanity.MAX_JOINT_ACCELERATION:g} per s^2"
             )
-        limits = model.robot.joints[handle.name].limits
-        if limits is not None and limits.effort > 0:  # Gazebo truncates a joint's force to its effort limit
-            effort = max(-limits.effort, min(limits.effort, effort))
         start, end = self._schedule(start_time, duration)
-        add = handle.joint.addForce if handle.type == "prismatic" else handle.joint.addTorque
-        self.loads.append(Load("effort", model.name, handle.name, lambda: add(effort), start, end))
+        apply = effort_applier(handle, effort, model.robot.joints[handle.name].limits)  # the joint's limits
+        self.loads.append(Load("effort", model.name, handle.name, apply, start, end))
 
     def clear_joint_forces(self, joint: str) -> None:
         """Drop the efforts on this joint; an unscoped name clears that joint in every model
