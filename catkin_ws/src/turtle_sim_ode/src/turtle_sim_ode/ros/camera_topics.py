@@ -132,12 +132,20 @@ def bayer(rgb: np.ndarray, channels: Tuple[Tuple[int, int], Tuple[int, int]]) ->
 class CameraPublisher(Periodic):
     """A camera or depth camera plugin's topics, under ``robotNamespace``/``cameraName`` as gazebo_ros has them."""
 
-    def __init__(self, sensor: CameraSensor, scene: Scene, namespace: str) -> None:
-        """``scene``: what the cameras see of the world's models (the simulation's)."""
+    def __init__(
+        self,
+        sensor: CameraSensor,
+        scene: Scene,
+        namespace: str,
+        sun: Optional[Callable[[], Optional[Tuple[float, float, float]]]] = None,
+    ) -> None:
+        """``scene``: what the cameras see of the world's models (the simulation's); ``sun``: the direction of the
+        world's directional light now (see CameraSensor.light_from), asked before each frame."""
         config = sensor.config
         super().__init__(1.0 / config.update_rate)
         self._sensor = sensor
         self._scene = scene
+        self._sun = sun
         prefix = topic_prefix(namespace or config.robot_namespace) + topic_prefix(config.camera_name)
 
         def topic(name: str) -> str:
@@ -168,6 +176,8 @@ class CameraPublisher(Periodic):
         image, depth, points = (self._heard(c) for c in (self._image, self._depth, self._points))
         if not (image or depth or points):
             return
+        if self._sun is not None:
+            self._sensor.light_from(self._sun())
         frame: Frame = self._sensor.render(self._scene)
         self.rendered += 1
         for warning in self._scene.take_warnings():

@@ -14,11 +14,18 @@ class LightControl:
     """The lights of the loaded world (mixed into Simulation)."""
 
     lights: Dict[str, Light]
+    # Whether the loaded world had a directional light: once the services have taken the last one away, the cameras
+    # see by ambient light alone (a world that never had one keeps Gazebo's default sun).
+    had_sun: bool = False
 
     @property
     def light_direction(self) -> Optional[Vec3]:
-        """What the cameras shade with: the first directional light's direction (None: no sun)."""
-        return sun_direction(self.lights.values())
+        """What the cameras shade with: the first directional light's direction; (0, 0, 0) when the world's were
+        deleted or turned to no direction; None when it never had one (the cameras' default sun)."""
+        direction = sun_direction(self.lights.values())
+        if direction is None and self.had_sun:
+            return (0.0, 0.0, 0.0)
+        return direction
 
     def _light(self, name: str) -> Light:
         light = self.lights.get(name)

@@ -194,6 +194,7 @@ class Simulation(WorldControl, LightControl):
         old_params, old_rate = self.physics.params, self.max_update_rate
         self.physics.set_params(params)
         self.lights, self.sky_colour = {light.name: light for light in world.lights}, world.background
+        self.had_sun = self.light_direction is not None
         self.max_update_rate = rate
         warnings = list(world.warnings)
         includes = world.includes
@@ -212,7 +213,7 @@ class Simulation(WorldControl, LightControl):
                 self.delete(name)
             self.physics.set_params(old_params)
             self.max_update_rate = old_rate
-            self.lights, self.sky_colour = {}, None
+            self.lights, self.sky_colour, self.had_sun = {}, None, False
             raise
         if world.state is not None:
             warnings.extend(apply_world_state(world.state, self.physics, self.models, self.lights))

@@ -12,4 +12,5 @@ from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 def interfaces(context: ModelContext, config: CameraConfig) -> List[Periodic]:
     sim = context.sim
     sensor = CameraSensor(sim.physics, context.model, config, sun_direction=sim.light_direction, sky=sim.sky_colour)
-    return [CameraPublisher(sensor, sim.scene, context.namespace)]
+    # the world's lights as the light services leave them, read at each frame
+    return [CameraPublisher(sensor, sim.scene, context.namespace, lambda: sim.light_direction)]
