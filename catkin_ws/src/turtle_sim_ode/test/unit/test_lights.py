@@ -90,3 +90,29 @@ def test_set_light_properties_normalises_the_quaternion_and_refuses_bad_values(w
         sim.set_light_properties(
             "lamp", False, (float("nan"), 0, 0, 1), (0, 0, 0, 1), (1, 0, 0), (0, 0, -1), (0, 0, 0), (0, 0, 0, 1)
         )
+
+
+def test_a_sun_model_on_the_model_path_is_used_else_the_built_in_one(tmp_path) -> None:
+    """Gazebo resolves model://sun on its model path: a sun model there stands; without one, the built-in sun."""
+    from turtle_sim_ode.models.resources import ResourcePaths
+
+    sun = tmp_path / "models" / "sun"
+    sun.mkdir(parents=True)
+    (sun / "model.config").write_text('<model><name>sun</name><sdf version="1.6">model.sdf</sdf></model>')
+    (sun / "model.sdf").write_text(
+        '<sdf version="1.6"><light type="directional" name="sun"><diffuse>0.2 0.3 0.4 1</diffuse>'
+        "<direction>0 1 -1</direction></light></sdf>"
+    )
+    text = '<sdf version="1.6"><world name="w"><include><uri>model://sun</uri><name>day</name></include></world></sdf>'
+    sim = Simulation()
+    sim.resources = ResourcePaths({}, [str(tmp_path / "models")], [str(tmp_path)])
+    sim.load_world(parse_sdf_world(text))
+    assert (list(sim.lights), sim.lights["day"].diffuse, sim.light_direction) == (
+        ["day"],
+        (0.2, 0.3, 0.4, 1.0),
+        (0.0, 1.0, -1.0),
+    )
+    bare = Simulation()
+    bare.resources = ResourcePaths({}, [str(tmp_path / "elsewhere")], [str(tmp_path)])
+    bare.load_world(parse_sdf_world(text))
+    assert bare.lights["day"].diffuse == SUN.diffuse

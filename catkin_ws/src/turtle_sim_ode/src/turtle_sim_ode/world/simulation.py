@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from turtle_sim_ode.models.builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
-from turtle_sim_ode.models.includes import resolve_includes
+from turtle_sim_ode.models.includes import resolve_includes, sun_lights
 from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.models.meshes import load_meshes, uses_meshes
 from turtle_sim_ode.models.resources import ResourcePaths
@@ -191,9 +191,10 @@ class Simulation(WorldControl, LightControl):
             rate = update_rate(sdf.real_time_update_rate, "world <real_time_update_rate>")
         elif sdf.real_time_factor is not None:
             rate = update_rate(sdf.real_time_factor, "world <real_time_factor>") / params.time_step
+        lights = world.lights if self.resources is None else sun_lights(world, self.resources)
         old_params, old_rate = self.physics.params, self.max_update_rate
         self.physics.set_params(params)
-        self.lights, self.sky_colour = {light.name: light for light in world.lights}, world.background
+        self.lights, self.sky_colour = {light.name: light for light in lights}, world.background
         self.had_sun = self.light_direction is not None
         self.max_update_rate = rate
         warnings = list(world.warnings)
