@@ -4,7 +4,7 @@ libgazebo_ros_triggered_camera.so one frame (image and camera_info) at the step 
 from __future__ import annotations
 
 import threading
-from typing import List
+from typing import Callable, List, Optional, Tuple
 
 import rospy
 from std_msgs.msg import Empty
@@ -19,8 +19,14 @@ from turtle_sim_ode.sensors.scene import Scene
 
 
 class TriggeredCameraPublisher(CameraPublisher):
-    def __init__(self, sensor: CameraSensor, scene: Scene, namespace: str) -> None:
-        super().__init__(sensor, scene, namespace)
+    def __init__(
+        self,
+        sensor: CameraSensor,
+        scene: Scene,
+        namespace: str,
+        sun: Optional[Callable[[], Optional[Tuple[float, float, float]]]] = None,
+    ) -> None:
+        super().__init__(sensor, scene, namespace, sun)
         self._period = 0.0  # looks for a trigger at every step; renders only when triggered
         config = sensor.config
         self._lock = threading.Lock()
@@ -49,7 +55,8 @@ def interfaces(context: ModelContext, config: CameraConfig) -> List[Periodic]:
     sim = context.sim
     sensor = CameraSensor(sim.physics, context.model, config, sun_direction=sim.light_direction, sky=sim.sky_colour)
     kind = TriggeredCameraPublisher if config.triggered else CameraPublisher
-    return [kind(sensor, sim.scene, context.namespace)]
+    # the world's lights as the light services leave them, read at each frame
+    return [kind(sensor, sim.scene, context.namespace, lambda: sim.light_direction)]
 
 
 def multicamera_interfaces(context: ModelContext, config: MultiCameraConfig) -> List[Periodic]:
