@@ -1,19 +1,18 @@
 """Fakes for the ros_control core's tests: joints that are point inertias, and a hardware built over them."""
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Dict, List, Tuple
 
-from conftest import FIXTURES
+from conftest import PACKAGE_ROOT
 
 from turtle_sim_ode.control.hardware import DefaultRobotHWSim
 from turtle_sim_ode.control.manager import ControllerManager
 from turtle_sim_ode.control.transmissions import read_transmissions
 from turtle_sim_ode.models.urdf import parse_urdf
 
-ROS_CONTROL = Path(FIXTURES) / "ros_control"
-ARM_URDF = (ROS_CONTROL / "two_link_arm.urdf").read_text()
-BASE_URDF = (ROS_CONTROL / "four_wheel_base.urdf").read_text()
+MODELS = PACKAGE_ROOT / "test" / "models"
+ARM_URDF = (MODELS / "two_link_arm.urdf").read_text()
+BASE_URDF = (MODELS / "four_wheel_base.urdf").read_text()
 
 
 class InertiaJoint:
@@ -53,7 +52,7 @@ class Rig:
 
     def __init__(self, urdf: str, robot_params: dict = None, inertia: float = 1.0) -> None:
         self.robot = parse_urdf(urdf)
-        transmissions, self.warnings = read_transmissions(urdf, self.robot)
+        transmissions, self.warnings = read_transmissions(self.robot)
         self.joints: Dict[str, InertiaJoint] = {t.name: InertiaJoint(inertia) for t in transmissions}
         self.hw = DefaultRobotHWSim(transmissions, self.joints, robot_params)
         self.log: List[Tuple[str, str]] = []

@@ -23,8 +23,8 @@ EFFORT_POSITION = {"type": "effort_controllers/JointPositionController", "joint"
 def test_transmissions_with_and_without_the_prefix():
     """default_robot_hw_sim.cpp, DefaultRobotHWSim::initSim: 'VelocityJointInterface' is taken as
     'hardware_interface/VelocityJointInterface' (with a deprecation warning in upstream)."""
-    arm = read_transmissions(ARM_URDF, parse_urdf(ARM_URDF))[0]
-    base = read_transmissions(BASE_URDF, parse_urdf(BASE_URDF))[0]
+    arm = read_transmissions(parse_urdf(ARM_URDF))[0]
+    base = read_transmissions(parse_urdf(BASE_URDF))[0]
     assert [(j.name, j.interface) for j in arm] == [("shoulder", EFFORT), ("elbow", EFFORT)]
     assert {j.interface for j in base} == {VELOCITY} and len(base) == 4
 
@@ -32,9 +32,9 @@ def test_transmissions_with_and_without_the_prefix():
 def test_limits_from_the_urdf():
     """joint_limits_interface getJointLimits(urdf joint): position limits for revolute joints only, velocity and
     effort where > 0."""
-    arm = read_transmissions(ARM_URDF, parse_urdf(ARM_URDF))[0]
+    arm = read_transmissions(parse_urdf(ARM_URDF))[0]
     assert arm[0].limits == Limits(-2.0, 2.0, 3.0, 60.0)
-    wheel = read_transmissions(BASE_URDF, parse_urdf(BASE_URDF))[0][0]
+    wheel = read_transmissions(parse_urdf(BASE_URDF))[0][0]
     assert wheel.limits == Limits(-math.inf, math.inf, 20.0, 80.0)
 
 
@@ -55,17 +55,17 @@ def transmission(body: str) -> str:
     ],
 )
 def test_transmission_warnings_as_default_robot_hw_sim(body, warning):
-    _, warnings = read_transmissions(transmission(body), parse_urdf(ARM_URDF))
+    _, warnings = read_transmissions(parse_urdf(transmission(body)))
     assert any(warning in w for w in warnings), warnings
 
 
 def test_a_joint_missing_from_the_model_or_an_unknown_interface_is_an_error():
     missing = "<transmission name='t'><joint name='wrist'><hardwareInterface>EffortJointInterface</hardwareInterface></joint></transmission>"
     with pytest.raises(ValueError, match='joint named "wrist" which is not in the gazebo model'):
-        read_transmissions(transmission(missing), parse_urdf(ARM_URDF))
+        read_transmissions(parse_urdf(transmission(missing)))
     unknown = missing.replace("wrist", "elbow").replace("EffortJointInterface", "ImuSensorInterface")
     with pytest.raises(ValueError, match="No matching hardware interface found for 'ImuSensorInterface'"):
-        read_transmissions(transmission(unknown), parse_urdf(ARM_URDF))
+        read_transmissions(parse_urdf(transmission(unknown)))
 
 
 # --- Pid -------------------------------------------------------------------------------------------------
@@ -106,7 +106,7 @@ def test_pid_gains_turn_velocity_joints_into_velocity_pid():
     """default_robot_hw_sim.cpp initSim: <ns>/gazebo_ros_control/pid_gains/<joint> makes VELOCITY
     VELOCITY_PID (and POSITION POSITION_PID); effort joints ignore it."""
     robot = parse_urdf(BASE_URDF)
-    transmissions = read_transmissions(BASE_URDF, robot)[0]
+    transmissions = read_transmissions(robot)[0]
     joints = {t.name: InertiaJoint() for t in transmissions}
     params = {"gazebo_ros_control": {"pid_gains": {"front_left_wheel": {"p": 5.0}}}}
     hw = DefaultRobotHWSim(transmissions, joints, params)

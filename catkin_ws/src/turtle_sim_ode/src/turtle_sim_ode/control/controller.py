@@ -26,6 +26,7 @@ class Controller:
     def __init__(self) -> None:
         self.claimed: List[str] = []
         self.inputs: Dict[str, Tuple[str, Callable[[Any], None]]] = {}
+        self.outputs: Dict[str, str] = {}  # topic -> kind, advertised when the controller is loaded
         self.outbox: List[Outgoing] = []
         self.running = False
 

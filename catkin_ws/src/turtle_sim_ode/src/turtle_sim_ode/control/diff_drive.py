@@ -171,6 +171,11 @@ class DiffDriveController(Controller):
         self.command = (0.0, 0.0, -math.inf)  # linear, angular, stamp
         self.last0 = self.last1 = (0.0, 0.0)
         self.inputs["cmd_vel"] = ("twist", self._on_cmd_vel)
+        self.outputs["odom"] = "odometry"
+        if self.enable_odom_tf:
+            self.outputs["/tf"] = "tf"
+        if self.publish_cmd:
+            self.outputs["cmd_vel_out"] = "twist_stamped"
         self.now = 0.0
 
     def _on_cmd_vel(self, twist: tuple) -> None:

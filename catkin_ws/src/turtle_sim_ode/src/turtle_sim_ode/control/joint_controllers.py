@@ -105,6 +105,7 @@ class PidPosition(Controller):
         self.joint = self.claim(hw, name)
         self.type = urdf_joint_type(robot, name)
         self.inputs["command"] = ("float64", self._on_command)
+        self.outputs["state"] = "joint_controller_state"
 
     def _on_command(self, value: float) -> None:
         self.target = float(value)
@@ -139,6 +140,7 @@ class PidVelocity(Controller):
         self.pid = Pid(read_gains(params.child("pid")))
         self.joint = self.claim(hw, name)
         self.inputs["command"] = ("float64", self._on_command)
+        self.outputs["state"] = "joint_controller_state"
 
     def _on_command(self, value: float) -> None:
         self.target = float(value)

@@ -20,6 +20,7 @@ class JointStateController(Controller):
         if not params.has("publish_rate"):
             raise ControllerError("Parameter 'publish_rate' not set")
         self.throttle = Throttle(params.number("publish_rate"))
+        self.outputs["@joint_states"] = "joint_states"
         self.extra: List[tuple] = []
         extra = params.raw("extra_joints")
         if isinstance(extra, list):  # upstream ignores a bad entry with an error, so do we

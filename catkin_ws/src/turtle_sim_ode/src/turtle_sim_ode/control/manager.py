@@ -65,18 +65,18 @@ class ControllerManager:
         return next((entry for entry in self.loaded if entry.name == name), None)
 
     # --- services -------------------------------------------------------------------
-    def load(self, name: str, params: Mapping[str, object]) -> bool:
-        """params: the controller's namespace tree (<ns>/<name>)."""
+    def load(self, name: str, params: Mapping[str, object], namespace: str = "") -> bool:
+        """params: the controller's parameter tree; namespace: where it is, for messages (default: name)."""
         if self.find(name):
             self.log("error", f"A controller named '{name}' was already loaded inside the controller manager")
             return False
-        tree = Params(params, name)
+        tree = Params(params, namespace or name)
         controller_type = tree.raw("type")
         if not isinstance(controller_type, str):
             self.log(
                 "error",
                 f"Could not load controller '{name}' because the type was not specified. Did you load the "
-                f"controller configuration on the parameter server (namespace: '{name}')?",
+                f"controller configuration on the parameter server (namespace: '{tree.namespace}')?",
             )
             return False
         factory = CONTROLLER_TYPES.get(controller_type)

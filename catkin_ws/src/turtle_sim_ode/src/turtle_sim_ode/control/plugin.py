@@ -69,13 +69,12 @@ class RosControl:
     def __init__(
         self,
         config: RosControlConfig,
-        urdf_text: str,
         robot: RobotModel,
         sim_joints: Mapping[str, SimJoint],
         robot_params: Optional[Mapping[str, object]],
         log: Callable[[str, str], None],
     ) -> None:
-        transmissions, warnings = read_transmissions(urdf_text, robot)
+        transmissions, warnings = read_transmissions(robot)
         for warning in list(config.warnings) + warnings:
             log("warn", warning)
         self.config = config

@@ -113,6 +113,7 @@ class JointTrajectoryController(Controller):
                     raise ControllerError("Failed to initialize PID gains from ROS parameter server.") from None
                 self.velocity_ff.append(params.number(f"velocity_ff/{name}", 0.0))
         self.inputs["command"] = ("joint_trajectory", self._on_command)
+        self.outputs["state"] = "joint_trajectory_state"
         self.now = 0.0
         self.period = 0.0
 

@@ -6,7 +6,6 @@ import math
 from dataclasses import dataclass
 from typing import List, Optional, Tuple
 
-from turtle_sim_ode.models.text import parse_xml
 from turtle_sim_ode.models.urdf import Joint, RobotModel
 
 EFFORT = "hardware_interface/EffortJointInterface"
@@ -62,13 +61,13 @@ def _interface(text: str) -> str:
     return text if "/" in text else "hardware_interface/" + text
 
 
-def read_transmissions(urdf_text: str, robot: RobotModel) -> Tuple[List[TransmissionJoint], List[str]]:
-    """(joints, warnings) of every usable transmission; the warnings say what was skipped and why, as
-    DefaultRobotHWSim warns. A joint the model lacks, or an interface that is not simulated, is an error."""
-    root = parse_xml(urdf_text, "URDF")
+def read_transmissions(robot: RobotModel) -> Tuple[List[TransmissionJoint], List[str]]:
+    """(joints, warnings) of every usable transmission of the URDF (models.urdf keeps the elements); the warnings
+    say what was skipped and why, as DefaultRobotHWSim warns. A joint the model lacks, or an interface that is not
+    simulated, is an error."""
     joints: List[TransmissionJoint] = []
     warnings: List[str] = []
-    for element in root.iter("transmission"):
+    for element in robot.transmissions:
         name = element.get("name", "")
         joint_elements = element.findall("joint")
         if not joint_elements:

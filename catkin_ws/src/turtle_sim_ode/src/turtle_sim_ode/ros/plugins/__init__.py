@@ -17,6 +17,7 @@ from turtle_sim_ode.ros.plugins import (
     kobuki,
     laser,
     p3d,
+    ros_control,
     skid_steer_drive,
 )
 from turtle_sim_ode.ros.settings import SimulatorSettings
@@ -27,6 +28,7 @@ from turtle_sim_ode.sensors.plugins.imu import ImuConfig
 from turtle_sim_ode.sensors.plugins.laser import LaserConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
+from turtle_sim_ode.world.plugins.ros_control import RosControlPluginConfig
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
 from turtle_sim_ode.world.simulation import Simulation
 
@@ -41,6 +43,7 @@ ADAPTERS: Dict[type, Adapter] = {
     LaserConfig: laser.interfaces,
     ContactConfig: bumper.interfaces,
     CameraConfig: camera.interfaces,
+    RosControlPluginConfig: ros_control.interfaces,
 }
 
 
