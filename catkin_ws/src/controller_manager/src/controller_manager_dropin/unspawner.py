@@ -31,16 +31,20 @@ def main() -> None:
         running = {c.name for c in list_controllers().controller if c.state == "running"}
         to_stop = to_inhibit & running
         if to_stop:
-            rospy.loginfo("Inhibiting controllers: %s" % ", ".join(sorted(to_stop)))
-            switch([], sorted(to_stop), SwitchControllerRequest.BEST_EFFORT, False, 0.0)
+            # remembered before the switch: a shutdown during it restarts them
             inhibited.update(to_stop)
+            switch([], sorted(to_stop), SwitchControllerRequest.BEST_EFFORT, False, 0.0)
+            rospy.loginfo("Inhibiting controllers: %s" % ", ".join(sorted(to_stop)))
 
-    stop_controllers()
-    timer = rospy.Timer(rospy.Duration(3), stop_controllers)
+    timers = []
 
     def restart_controllers() -> None:
-        timer.shutdown()
+        for timer in timers:
+            timer.shutdown()
         switch(sorted(inhibited), [], SwitchControllerRequest.BEST_EFFORT, False, 0.0)
 
+    # registered before the first stop, so that a shutdown at any moment after it restarts what was stopped
     rospy.on_shutdown(restart_controllers)
+    stop_controllers()
+    timers.append(rospy.Timer(rospy.Duration(3), stop_controllers))
     rospy.spin()
