@@ -78,6 +78,11 @@ class JointData:
     effort: float = 0.0
     command: float = 0.0
 
+    @property
+    def motor_force(self) -> float:
+        """The force of a velocity motor driving it: the effort limit, if it has one."""
+        return self.limits.effort if self.limits.effort < math.inf else UNLIMITED_MOTOR_FORCE
+
 
 @dataclass
 class RobotHW:
@@ -154,13 +159,13 @@ class DefaultRobotHWSim(RobotHW):
                     self._apply_pid(joint, sim, error, period)
                 else:
                     speed = position_error(joint.type, joint.position, command) / period if period > 0 else 0.0
-                    sim.drive(speed, self._motor_force(limits))
+                    sim.drive(speed, joint.motor_force)
             elif joint.interface == VELOCITY:
-                command = clamp(command, -limits.velocity, limits.velocity)
+                command = -limits.velocity if command < -limits.velocity else min(command, limits.velocity)
                 if name in self.pids:
                     self._apply_pid(joint, sim, command - joint.velocity, period)
                 else:
-                    sim.drive(command, self._motor_force(limits))
+                    sim.drive(command, joint.motor_force)
 
     def _saturated_position(self, name: str, command: float, period: float) -> float:
         """PositionJointSaturationHandle: within the position limits and, with a velocity limit, within
@@ -180,6 +185,3 @@ class DefaultRobotHWSim(RobotHW):
         joint.effort = clamp(effort, -joint.limits.effort, joint.limits.effort)
         sim.apply_effort(joint.effort)
 
-    @staticmethod
-    def _motor_force(limits: Limits) -> float:
-        return limits.effort if math.isfinite(limits.effort) else UNLIMITED_MOTOR_FORCE

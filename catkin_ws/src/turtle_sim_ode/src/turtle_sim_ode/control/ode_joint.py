@@ -9,7 +9,7 @@ class OdeSimJoint:
     def __init__(self, handle: JointHandle) -> None:
         self.handle = handle
         self._add = handle.joint.addForce if handle.type == "prismatic" else handle.joint.addTorque
-        self._motor_on = False
+        self._motor_force = 0.0  # the motor's force as last set (0: off)
 
     def position(self) -> float:
         return self.handle.angle()
@@ -18,12 +18,13 @@ class OdeSimJoint:
         return self.handle.rate()
 
     def apply_effort(self, effort: float) -> None:
-        if self._motor_on:  # an effort-driven joint has no motor holding it
+        if self._motor_force:  # an effort-driven joint has no motor holding it
             self.handle.joint.setParam(oc.PARAM_FMAX, 0.0)
-            self._motor_on = False
+            self._motor_force = 0.0
         self._add(effort)
 
     def drive(self, velocity: float, max_force: float) -> None:
         self.handle.joint.setParam(oc.PARAM_VEL, velocity)
-        self.handle.joint.setParam(oc.PARAM_FMAX, max_force)
-        self._motor_on = True
+        if max_force != self._motor_force:
+            self.handle.joint.setParam(oc.PARAM_FMAX, max_force)
+            self._motor_force = max_force
