@@ -12,7 +12,7 @@ from turtle_sim_ode.control.controller import Controller
 from turtle_sim_ode.control.hardware import JointData, RobotHW, clamp, position_error
 from turtle_sim_ode.control.params import ControllerError, Params
 from turtle_sim_ode.control.pid import Pid, read_gains
-from turtle_sim_ode.control.transmissions import EFFORT, POSITION, VELOCITY
+from turtle_sim_ode.control.transmissions import EFFORT, POSITION
 from turtle_sim_ode.models.urdf import RobotModel
 
 STATE_EVERY = 10  # updates between two JointControllerState messages
