@@ -8,11 +8,9 @@ genaction.py as catkin does (FollowJointTrajectoryAction bc4f9b74... is also the
 import sys
 from pathlib import Path
 
-import pytest
-
 PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(PACKAGE_ROOT.parent / "workspace_testing" / "src"))
-from workspace_testing.msg_md5 import source_md5sums  # noqa: E402
+from workspace_testing.msg_md5 import md5_tests  # noqa: E402
 
 PACKAGE = "control_msgs"
 UPSTREAM = {
@@ -62,29 +60,9 @@ UPSTREAM = {
 }
 
 
-@pytest.fixture(scope="module")
-def source():
-    pytest.importorskip("genmsg")
-    return source_md5sums(PACKAGE_ROOT, PACKAGE, ["std_msgs", "geometry_msgs", "trajectory_msgs", "actionlib_msgs"])
-
-
-def test_every_upstream_type_and_no_other(source):
-    assert sorted(source) == sorted(UPSTREAM)
-
-
-@pytest.mark.parametrize("type_key", sorted(UPSTREAM))
-def test_source_md5sum_matches_upstream(source, type_key):
-    assert source[type_key] == UPSTREAM[type_key]
-
-
-@pytest.mark.parametrize("type_key", sorted(UPSTREAM))
-def test_generated_python_md5sum_matches_upstream(type_key):
-    kind, name = type_key.split("/")
-    try:
-        module = __import__("%s.%s" % (PACKAGE, kind), fromlist=[name])
-    except ImportError as error:
-        pytest.skip("generated %s.%s not importable (source a devel space): %s" % (PACKAGE, kind, error))
-    assert getattr(module, name)._md5sum == UPSTREAM[type_key]
+globals().update(
+    md5_tests(PACKAGE_ROOT, PACKAGE, ["std_msgs", "geometry_msgs", "trajectory_msgs", "actionlib_msgs"], UPSTREAM)
+)
 
 
 def test_follow_joint_trajectory_error_codes():

@@ -64,3 +64,38 @@ def source_md5sums(package_root: Path, package: str, dependencies: Iterable[str]
                 msg_loader.load_depends(context, spec, search_path)
                 found["%s/%s" % (path.suffix[1:], path.stem)] = genmsg.compute_md5(context, spec)
         return found
+
+
+def md5_tests(package_root: Path, package: str, dependencies: Iterable[str], upstream: Dict[str, str]) -> dict:
+    """The tests of a message package's md5sums against ``upstream`` ({"msg/Name": md5sum}), for a test module to
+    take with ``globals().update(md5_tests(...))``: every upstream type and no other, each source md5sum, and each
+    generated Python class's (skipped where no devel space with the package is sourced)."""
+    import pytest
+
+    @pytest.fixture(scope="module")
+    def source() -> Dict[str, str]:
+        pytest.importorskip("genmsg")
+        return source_md5sums(package_root, package, dependencies)
+
+    def test_every_upstream_type_and_no_other(source: Dict[str, str]) -> None:
+        assert sorted(source) == sorted(upstream)
+
+    @pytest.mark.parametrize("type_key", sorted(upstream))
+    def test_source_md5sum_matches_upstream(source: Dict[str, str], type_key: str) -> None:
+        assert source[type_key] == upstream[type_key]
+
+    @pytest.mark.parametrize("type_key", sorted(upstream))
+    def test_generated_python_md5sum_matches_upstream(type_key: str) -> None:
+        kind, name = type_key.split("/")
+        try:
+            module = __import__("%s.%s" % (package, kind), fromlist=[name])
+        except ImportError as error:
+            pytest.skip("generated %s.%s not importable (source a devel space): %s" % (package, kind, error))
+        assert getattr(module, name)._md5sum == upstream[type_key]
+
+    return {
+        "source": source,
+        "test_every_upstream_type_and_no_other": test_every_upstream_type_and_no_other,
+        "test_source_md5sum_matches_upstream": test_source_md5sum_matches_upstream,
+        "test_generated_python_md5sum_matches_upstream": test_generated_python_md5sum_matches_upstream,
+    }
