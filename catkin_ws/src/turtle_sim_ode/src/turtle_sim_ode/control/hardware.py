@@ -184,4 +184,3 @@ class DefaultRobotHWSim(RobotHW):
         effort = self.pids[joint.name].compute(error, period)
         joint.effort = clamp(effort, -joint.limits.effort, joint.limits.effort)
         sim.apply_effort(joint.effort)
-
