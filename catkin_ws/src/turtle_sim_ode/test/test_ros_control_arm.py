@@ -88,7 +88,8 @@ class ArmControl(unittest.TestCase):
             JointTrajectoryPoint(positions=[shoulder, elbow], time_from_start=rospy.Duration(seconds))
         ]
         goal.path_tolerance = list(path_tolerance)
-        client.send_goal(goal)
+        self.feedback = []
+        client.send_goal(goal, feedback_cb=self.feedback.append)
         self.assertTrue(client.wait_for_result(rospy.Duration(seconds + 10)))
         return client.get_state(), client.get_result()
 
@@ -100,6 +101,8 @@ class ArmControl(unittest.TestCase):
         now = positions()
         self.assertAlmostEqual(now["shoulder"], -0.4, delta=0.05)
         self.assertAlmostEqual(now["elbow"], 1.0, delta=0.05)
+        self.assertGreater(len(self.feedback), 10, "feedback at action_monitor_rate (20 Hz) over 2 s")
+        self.assertEqual(self.feedback[-1].joint_names, ["shoulder", "elbow"])
 
     def test_d_goal_beyond_the_limit_is_aborted(self):
         # the shoulder stops at 2.0; its path tolerance is removed (< 0) so that the goal tolerance decides

@@ -189,6 +189,8 @@ def test_trajectory_goal_succeeds():
     assert controller.submit(goal([0.5, -0.5])) == (SUCCESSFUL, "")
     rig.run(1.5)
     assert controller.results == [("g1", "succeeded", SUCCESSFUL, "")]
+    # feedback while the goal ran, at action_monitor_rate (20 Hz default, joint_trajectory_controller_impl.h)
+    assert {goal_id for goal_id, _ in controller.feedback} == {"g1"} and 15 <= len(controller.feedback) <= 30
     assert rig.joints["elbow"].pos == pytest.approx(-0.5, abs=0.02)
 
 

@@ -88,6 +88,7 @@ class JointTrajectoryController(Controller):
         self.segments: List[List[Segment]] = []
         self.active: Optional[ActiveGoal] = None
         self.results: List[Tuple[str, str, int, str]] = []  # goal id, succeeded/aborted/preempted, code, text
+        self.feedback: List[Tuple[str, dict]] = []  # goal id, the state payload, at action_monitor_rate
         self.errors: List[str] = []
 
     def init(self, hw: RobotHW, params: Params, robot: Optional[RobotModel]) -> None:
@@ -101,6 +102,7 @@ class JointTrajectoryController(Controller):
         self.default_goal = [Tolerance(constraints.number(f"{n}/goal", 0.0), stopped) for n in names]
         self.default_goal_time = constraints.number("goal_time", 0.0)
         self.state_throttle = Throttle(params.number("state_publish_rate", 50.0))
+        self.feedback_throttle = Throttle(params.number("action_monitor_rate", 20.0))
         self.stop_duration = params.number("stop_trajectory_duration", 0.0)
         self.allow_partial = params.flag("allow_partial_joints_goal", False)
         self.pids: List[Pid] = []
@@ -126,6 +128,7 @@ class JointTrajectoryController(Controller):
         for joint in self.joints:
             joint.command = joint.position if self.interface == POSITION else 0.0
         self.state_throttle.start(time, publish_first=False)
+        self.feedback_throttle.start(time, publish_first=False)
 
     def stopping(self, time: float) -> None:
         self._finish("preempted", INVALID_GOAL, "Controller stopped")
@@ -162,13 +165,14 @@ class JointTrajectoryController(Controller):
             else:
                 pid = self.pids[i].compute(errors[i][0], period, errors[i][1])
                 joint.command = desired[i][1] * self.velocity_ff[i] + pid
-        if self.state_throttle.due(time):
+        state_due, feedback_due = self.state_throttle.due(time), self.feedback_throttle.due(time)
+        if state_due or (feedback_due and self.active is not None):
             actual = [(j.position, j.velocity, 0.0) for j in self.joints]
-            self.publish(
-                "state",
-                "joint_trajectory_state",
-                {"stamp": time, "joint_names": self.names, "desired": desired, "actual": actual, "error": errors},
-            )
+            state = {"stamp": time, "joint_names": self.names, "desired": desired, "actual": actual, "error": errors}
+            if state_due:
+                self.publish("state", "joint_trajectory_state", state)
+            if feedback_due and self.active is not None:
+                self.feedback.append((self.active.goal_id, state))
 
     def _check_goal(self, time: float, errors: Sequence[Tuple[float, float, float]]) -> None:
         goal = self.active

@@ -10,6 +10,7 @@ import actionlib
 import rospy
 from control_msgs.msg import (
     FollowJointTrajectoryAction,
+    FollowJointTrajectoryFeedback,
     FollowJointTrajectoryResult,
     JointControllerState,
     JointTrajectoryControllerState,
@@ -201,18 +202,34 @@ class ControllerTopics:
             else:
                 handle.set_canceled(result, text)
 
-    def take(self) -> Tuple[list, list, list]:
-        """What the last update left to send: outgoing payloads, errors to log, finished goals (lock held)."""
+    def take(self) -> Tuple[list, list, list, list]:
+        """What the last update left to send: outgoing payloads, errors to log, feedback of running goals with
+        their handles, finished goals (lock held)."""
         errors = list(getattr(self.controller, "errors", []))
         if errors:
             self.controller.errors.clear()
-        return self.controller.drain(), errors, self._take_results()
+        feedback = getattr(self.controller, "feedback", None) or []
+        to_clients = [(self.goals[goal_id], state) for goal_id, state in feedback if goal_id in self.goals]
+        if feedback:
+            feedback.clear()
+        return self.controller.drain(), errors, to_clients, self._take_results()
 
-    def send(self, taken: Tuple[list, list, list]) -> None:
+    def send(self, taken: Tuple[list, list, list, list]) -> None:
         """Publish and report what ``take`` gave (lock not held)."""
-        outgoing, errors, finished = taken
+        outgoing, errors, to_clients, finished = taken
         for topic, kind, data in outgoing:
             self.publishers[topic].publish(message(kind, data))
+        for handle, state in to_clients:
+            point = message("joint_trajectory_state", state)
+            handle.publish_feedback(
+                FollowJointTrajectoryFeedback(
+                    header=point.header,
+                    joint_names=point.joint_names,
+                    desired=point.desired,
+                    actual=point.actual,
+                    error=point.error,
+                )
+            )
         for error in errors:
             rospy.logerr_throttle(1.0, f"{self.name}: {error}")
         self._settle(finished)
