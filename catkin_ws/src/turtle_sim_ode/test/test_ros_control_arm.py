@@ -12,6 +12,8 @@ from control_msgs.msg import (
     FollowJointTrajectoryAction,
     FollowJointTrajectoryGoal,
     FollowJointTrajectoryResult,
+    GripperCommandAction,
+    GripperCommandGoal,
     JointTolerance,
 )
 from controller_manager_msgs.srv import ListControllers, SwitchController, SwitchControllerRequest
@@ -110,6 +112,21 @@ class ArmControl(unittest.TestCase):
         self.assertEqual(state, actionlib.GoalStatus.ABORTED)
         self.assertEqual(result.error_code, FollowJointTrajectoryResult.GOAL_TOLERANCE_VIOLATED)
         self.assertTrue(result.error_string.startswith("shoulder goal error"), result.error_string)
+
+    def test_e_gripper_action(self):
+        """gripper_action_controller on the elbow: the trajectory controller gives the elbow up in the same switch;
+        a GripperCommand goal with enough effort is reached."""
+        stop = ["arm_trajectory_controller"]
+        self.assertTrue(self.switch(["elbow_gripper_controller"], stop, SwitchControllerRequest.STRICT, False, 0.0).ok)
+        client = actionlib.SimpleActionClient(NS + "/elbow_gripper_controller/gripper_cmd", GripperCommandAction)
+        self.assertTrue(client.wait_for_server(rospy.Duration(10)))
+        goal = GripperCommandGoal()
+        goal.command.position, goal.command.max_effort = 0.6, 30.0
+        client.send_goal(goal)
+        self.assertTrue(client.wait_for_result(rospy.Duration(10)))
+        self.assertEqual(client.get_state(), actionlib.GoalStatus.SUCCEEDED)
+        self.assertTrue(client.get_result().reached_goal)
+        self.assertAlmostEqual(client.get_result().position, 0.6, delta=0.02)
 
 
 if __name__ == "__main__":

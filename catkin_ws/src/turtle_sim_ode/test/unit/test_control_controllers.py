@@ -188,7 +188,7 @@ def test_trajectory_goal_succeeds():
     controller = rig.manager.find("arm").controller
     assert controller.submit(goal([0.5, -0.5])) == (SUCCESSFUL, "")
     rig.run(1.5)
-    assert controller.results == [("g1", "succeeded", SUCCESSFUL, "")]
+    assert controller.results == [("g1", "succeeded", {"error_code": SUCCESSFUL, "error_string": ""})]
     # feedback while the goal ran, at action_monitor_rate (20 Hz default, joint_trajectory_controller_impl.h)
     assert {goal_id for goal_id, _ in controller.feedback} == {"g1"} and 15 <= len(controller.feedback) <= 30
     assert rig.joints["elbow"].pos == pytest.approx(-0.5, abs=0.02)
@@ -202,8 +202,9 @@ def test_trajectory_goal_out_of_reach_is_aborted():
     controller = rig.manager.find("arm").controller
     controller.submit(goal([1.5, 0.0], seconds=0.3))
     rig.run(1.0)
-    assert controller.results[0][1:3] == ("aborted", GOAL_TOLERANCE_VIOLATED)
-    assert controller.results[0][3].startswith("shoulder goal error ")
+    goal_id, status, result = controller.results[0]
+    assert (status, result["error_code"]) == ("aborted", GOAL_TOLERANCE_VIOLATED)
+    assert result["error_string"].startswith("shoulder goal error ")
 
 
 @pytest.mark.parametrize(
@@ -228,3 +229,36 @@ def test_trajectory_needs_gains_for_effort_joints():
     rig = Rig(ARM_URDF)
     assert not rig.manager.load("arm", dict(TRAJECTORY, gains={"shoulder": {"p": 1.0}}))
     assert "Failed to initialize PID gains from ROS parameter server." in rig.errors()
+
+
+# --- gripper_action_controller ---------------------------------------------------------------------------------
+GRIPPER = {
+    "type": "effort_controllers/GripperActionController",
+    "joint": "elbow",
+    "gains": {"elbow": {"p": 100.0, "d": 20.0}},
+}
+
+
+def test_gripper_reaches_the_goal_within_its_tolerance():
+    """gripper_action_controller_impl.h checkForSuccess: |error| < goal_tolerance (0.01): succeeded, reached_goal."""
+    rig = Rig(ARM_URDF)
+    rig.start("gripper", GRIPPER)
+    controller = rig.manager.find("gripper").controller
+    assert controller.submit("g", 0.5, 50.0) == (True, "")
+    rig.run(2.0)
+    goal_id, status, result = controller.results[0]
+    assert (goal_id, status, result["reached_goal"], result["stalled"]) == ("g", "succeeded", True, False)
+    assert abs(result["position"] - 0.5) < 0.01
+
+
+def test_gripper_without_effort_stalls():
+    """checkForSuccess: no movement faster than stall_velocity_threshold for stall_timeout: aborted, stalled; the
+    effort is clamped to the goal's max_effort (hardware_interface_adapter.h, here 0)."""
+    rig = Rig(ARM_URDF)
+    rig.start("gripper", dict(GRIPPER, stall_timeout=0.5))
+    controller = rig.manager.find("gripper").controller
+    controller.submit("g", 0.5, 0.0)
+    rig.run(0.4)
+    assert controller.results == []
+    rig.run(0.2)
+    assert controller.results[0][1] == "aborted" and controller.results[0][2]["stalled"]

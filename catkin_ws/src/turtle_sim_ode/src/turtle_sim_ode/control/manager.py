@@ -8,6 +8,7 @@ from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from turtle_sim_ode.control.controller import Controller
 from turtle_sim_ode.control.diff_drive import DiffDriveController
+from turtle_sim_ode.control.gripper import GripperActionController
 from turtle_sim_ode.control.hardware import RobotHW
 from turtle_sim_ode.control.joint_controllers import (
     ForwardCommand,
@@ -41,6 +42,8 @@ CONTROLLER_TYPES: Dict[str, Callable[[], Controller]] = {
     "position_controllers/JointPositionController": lambda: ForwardCommand(POSITION),
     "position_controllers/JointGroupPositionController": lambda: ForwardGroupCommand(POSITION),
     "position_controllers/JointTrajectoryController": lambda: JointTrajectoryController(POSITION),
+    "position_controllers/GripperActionController": lambda: GripperActionController(POSITION),
+    "effort_controllers/GripperActionController": lambda: GripperActionController(EFFORT),
 }
 
 

@@ -87,7 +87,8 @@ class JointTrajectoryController(Controller):
         self.interface = interface
         self.segments: List[List[Segment]] = []
         self.active: Optional[ActiveGoal] = None
-        self.results: List[Tuple[str, str, int, str]] = []  # goal id, succeeded/aborted/preempted, code, text
+        # goal id, succeeded/aborted/preempted, the result's fields (error_code, error_string)
+        self.results: List[Tuple[str, str, dict]] = []
         self.feedback: List[Tuple[str, dict]] = []  # goal id, the state payload, at action_monitor_rate
         self.errors: List[str] = []
 
@@ -193,7 +194,7 @@ class JointTrajectoryController(Controller):
 
     def _finish(self, status: str, code: int, text: str) -> None:
         if self.active is not None:
-            self.results.append((self.active.goal_id, status, code, text))
+            self.results.append((self.active.goal_id, status, {"error_code": code, "error_string": text}))
             self.active = None
 
     # --- new trajectories -----------------------------------------------------------

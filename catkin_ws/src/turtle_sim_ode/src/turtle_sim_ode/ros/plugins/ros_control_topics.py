@@ -12,6 +12,8 @@ from control_msgs.msg import (
     FollowJointTrajectoryAction,
     FollowJointTrajectoryFeedback,
     FollowJointTrajectoryResult,
+    GripperCommandAction,
+    GripperCommandResult,
     JointControllerState,
     JointTrajectoryControllerState,
 )
@@ -23,7 +25,8 @@ from tf2_msgs.msg import TFMessage
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from turtle_sim_ode.control.controller import Controller
-from turtle_sim_ode.control.trajectory import JointTrajectoryController, Point, TrajectoryGoal
+from turtle_sim_ode.control.gripper import GripperActionController
+from turtle_sim_ode.control.trajectory import SUCCESSFUL, JointTrajectoryController, Point, TrajectoryGoal
 from turtle_sim_ode.ros.periodic import publisher, sim_stamp, subscriber
 
 INPUT_TYPES = {
@@ -31,6 +34,11 @@ INPUT_TYPES = {
     "float64_array": Float64MultiArray,
     "twist": Twist,
     "joint_trajectory": JointTrajectory,
+}
+# The controllers with an action server: its name, action type and result type.
+ACTIONS = {
+    JointTrajectoryController: ("follow_joint_trajectory", FollowJointTrajectoryAction, FollowJointTrajectoryResult),
+    GripperActionController: ("gripper_cmd", GripperCommandAction, GripperCommandResult),
 }
 OUTPUT_TYPES = {
     "joint_controller_state": JointControllerState,
@@ -40,6 +48,15 @@ OUTPUT_TYPES = {
     "joint_trajectory_state": JointTrajectoryControllerState,
     "twist_stamped": TwistStamped,
 }
+
+
+def trajectory_request(request: Any, goal_id: str) -> TrajectoryGoal:
+    """A follow_joint_trajectory goal with its tolerances."""
+    goal = trajectory_goal(request.trajectory, goal_id)
+    goal.path_tolerance = {t.name: (t.position, t.velocity, t.acceleration) for t in request.path_tolerance}
+    goal.goal_tolerance = {t.name: (t.position, t.velocity, t.acceleration) for t in request.goal_tolerance}
+    goal.goal_time_tolerance = request.goal_time_tolerance.to_sec()
+    return goal
 
 
 def trajectory_goal(msg: JointTrajectory, goal_id: Optional[str] = None) -> TrajectoryGoal:
@@ -132,13 +149,11 @@ class ControllerTopics:
         ]
         self.goals: Dict[str, Any] = {}
         self.action: Optional[actionlib.ActionServer] = None
-        if isinstance(controller, JointTrajectoryController):
+        action = ACTIONS.get(type(controller))
+        if action is not None:
+            action_name, action_type, self.result_type = action
             self.action = actionlib.ActionServer(
-                topic_name(namespace, name, "follow_joint_trajectory"),
-                FollowJointTrajectoryAction,
-                self._on_goal,
-                self._on_cancel,
-                auto_start=False,
+                topic_name(namespace, name, action_name), action_type, self._on_goal, self._on_cancel, auto_start=False
             )
             self.action.start()
 
@@ -155,49 +170,53 @@ class ControllerTopics:
 
     def _on_goal(self, handle: Any) -> None:
         """actionlib calls this holding its own lock: the manager's lock is taken inside it, never the reverse."""
-        goal_id = handle.get_goal_id().id
-        request = handle.get_goal()
-        goal = trajectory_goal(request.trajectory, goal_id)
-        goal.path_tolerance = {t.name: (t.position, t.velocity, t.acceleration) for t in request.path_tolerance}
-        goal.goal_tolerance = {t.name: (t.position, t.velocity, t.acceleration) for t in request.goal_tolerance}
-        goal.goal_time_tolerance = request.goal_time_tolerance.to_sec()
+        goal_id, request = handle.get_goal_id().id, handle.get_goal()
         with self.lock:
-            code, text = self.controller.submit(goal)
-            if code == FollowJointTrajectoryResult.SUCCESSFUL:
+            if isinstance(self.controller, JointTrajectoryController):
+                code, text = self.controller.submit(trajectory_request(request, goal_id))
+                accepted, rejection = code == SUCCESSFUL, {"error_code": code, "error_string": text}
+            else:
+                accepted, text = self.controller.submit(goal_id, request.command.position, request.command.max_effort)
+                rejection = {}
+            if accepted:
                 self.goals[goal_id] = handle
             finished = self._take_results()
-        if code != FollowJointTrajectoryResult.SUCCESSFUL:
+        if not accepted:
             rospy.logerr(f"{self.name}: {text}")
-            handle.set_rejected(FollowJointTrajectoryResult(error_code=code, error_string=text), text)
+            handle.set_rejected(self.result_type(**rejection), text)
             return
         handle.set_accepted()
         self._settle(finished)
 
     def _on_cancel(self, handle: Any) -> None:
+        goal_id = handle.get_goal_id().id
         with self.lock:
-            active = self.controller.active
-            if active is not None and active.goal_id == handle.get_goal_id().id:
-                self.controller.submit(TrajectoryGoal(self.controller.names, []))  # hold where it is
+            if isinstance(self.controller, JointTrajectoryController):
+                active = self.controller.active
+                if active is not None and active.goal_id == goal_id:
+                    self.controller.submit(TrajectoryGoal(self.controller.names, []))  # hold where it is
+            else:
+                self.controller.cancel(goal_id)
             finished = self._take_results()
         self._settle(finished)
 
-    def _take_results(self) -> List[Tuple[Any, str, int, str]]:
+    def _take_results(self) -> List[Tuple[Any, str, dict]]:
         """The goals the controller finished, with their handles (lock held)."""
         results = getattr(self.controller, "results", None)
         if not results:
             return []
-        finished = [(self.goals.pop(goal_id, None), status, code, text) for goal_id, status, code, text in results]
+        finished = [(self.goals.pop(goal_id, None), status, fields) for goal_id, status, fields in results]
         results.clear()
         return [entry for entry in finished if entry[0] is not None]
 
-    def _settle(self, finished: List[Tuple[Any, str, int, str]]) -> None:
+    def _settle(self, finished: List[Tuple[Any, str, dict]]) -> None:
         """Report finished goals to their clients (lock not held: actionlib takes its own)."""
-        for handle, status, code, text in finished:
-            result = FollowJointTrajectoryResult(error_code=code, error_string=text)
+        for handle, status, fields in finished:
+            result, text = self.result_type(**fields), fields.get("error_string", "")
             if status == "succeeded":
                 handle.set_succeeded(result, text)
             elif status == "aborted":
-                rospy.logerr(f"{self.name}: {text}")
+                rospy.logerr(f"{self.name}: goal aborted {text or fields}")
                 handle.set_aborted(result, text)
             else:
                 handle.set_canceled(result, text)
@@ -236,7 +255,7 @@ class ControllerTopics:
 
     def close(self) -> None:
         for handle in list(self.goals.values()):
-            handle.set_aborted(FollowJointTrajectoryResult(error_code=-1), "Controller unloaded")
+            handle.set_aborted(self.result_type(), "Controller unloaded")
         for sub in self.subscribers:
             sub.unregister()
         for pub in self.publishers.values():
