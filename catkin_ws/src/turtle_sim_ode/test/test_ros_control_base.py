@@ -37,6 +37,9 @@ class BaseControl(unittest.TestCase):
         while {c.name: c.state for c in listing().controller}.get("base_controller") != "running":
             assert rospy.Time.now() < deadline, "base_controller never ran"
             rospy.sleep(0.1)
+        while math.hypot(*[getattr(truth()[1], axis) for axis in "xyz"]) > 0.01:  # settled on its wheels
+            assert rospy.Time.now() < deadline, "the base never came to rest"
+            rospy.sleep(0.1)
 
     def test_a_odometry_against_ground_truth(self):
         """From rest to rest, so that the odometry and the ground truth are compared at the same places."""
