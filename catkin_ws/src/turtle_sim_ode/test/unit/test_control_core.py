@@ -202,3 +202,45 @@ def test_controller_types_with_their_base_class():
     types = ControllerManager.types()
     assert ("diff_drive_controller/DiffDriveController", "controller_interface::ControllerBase") in types
     assert len(types) == len(CONTROLLER_TYPES)
+
+
+def test_position_joints_without_gains_are_driven_to_the_command():
+    """default_robot_hw_sim.cpp writeSim POSITION: the joint is put at the command (here: a velocity motor reaching
+    it in one step, the effort limit as its force), saturated to the limits (PositionJointSaturationHandle: within
+    [lower, upper] and velocity * period of the last command)."""
+    rig = Rig(ARM_URDF.replace("EffortJointInterface", "PositionJointInterface"), inertia=0.01)
+    assert rig.hw.control_method("shoulder") == "POSITION"
+    rig.start("p", {"type": "position_controllers/JointPositionController", "joint": "shoulder"})
+    kind, on_command = rig.manager.find("p").controller.inputs["command"]
+    on_command(2.5)  # beyond the upper limit 2.0; the velocity limit is 3 rad/s
+    rig.run(0.1)
+    assert rig.joints["shoulder"].pos == pytest.approx(0.3, abs=0.01)
+    rig.run(1.0)
+    assert rig.joints["shoulder"].pos == pytest.approx(2.0, abs=1e-3)
+
+
+def test_e_stop_zeroes_efforts_and_timing_restarts_after_a_reset():
+    """gazebo_ros_control_plugin.cpp: with the e-stop active, efforts are 0; Reset() restarts the update timing."""
+    from turtle_sim_ode.control.plugin import RosControl
+
+    rig = Rig(ARM_URDF)
+    config = RosControlConfig.read({"controlPeriod": "0.002"}, "arm", 0.001)
+    control = RosControl(config, rig.robot, rig.joints, {}, lambda level, text: None)
+    control.manager.load("e", {"type": "effort_controllers/JointEffortController", "joint": "shoulder"})
+    control.manager.switch(["e"], [], 2)
+    control.manager.find("e").controller.inputs["command"][1](5.0)
+    control.step(0.0, 0.001)
+    assert rig.joints["shoulder"].effort == 5.0
+    control.e_stop = True
+    control.step(0.001, 0.001)
+    assert rig.joints["shoulder"].effort == 0.0
+    control.e_stop = False
+    updates = []
+    update = control.manager.update
+    control.manager.update = lambda time, period: updates.append(period) or update(time, period)
+    for step in range(1, 5):  # 1 ms steps, a 2 ms control period: every other step
+        control.step(0.001 + step * 0.001, 0.001)
+    assert updates == pytest.approx([0.002, 0.002])
+    control.reset()
+    control.step(0.0, 0.001)
+    assert len(updates) == 3

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, List, Mapping, Optional
+from typing import Callable, Mapping, Optional
 
 from turtle_sim_ode.control.hardware import DefaultRobotHWSim, SimJoint
 from turtle_sim_ode.control.manager import ControllerManager
@@ -84,7 +84,6 @@ class RosControl:
         self.manager = ControllerManager(self.hw, robot, log)
         self.last_update: Optional[float] = None
         self.e_stop = False
-        self.after_update: List[Callable[[], None]] = []
 
     def step(self, sim_time: float, physics_step: float) -> None:
         """Before each physics step: the controllers once a control period has passed, the joints every step."""
@@ -95,13 +94,11 @@ class RosControl:
             self.last_update = sim_time
             self.hw.read()
             self.manager.update(sim_time, period)
-            for hook in self.after_update:
-                hook()
         if self.e_stop:
             for joint in self.hw.joints.values():
                 joint.command = joint.position if joint.interface.endswith("PositionJointInterface") else 0.0
         self.hw.write(physics_step)
 
-    def reset(self, sim_time: float) -> None:
+    def reset(self) -> None:
         """World reset: no negative periods afterwards."""
         self.last_update = None

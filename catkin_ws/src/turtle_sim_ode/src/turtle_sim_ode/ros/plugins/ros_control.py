@@ -87,7 +87,7 @@ class RosControlInterface(Periodic):
 
     def reset(self) -> None:
         with self.lock:
-            self.control.reset(0.0)
+            self.control.reset()
 
     def _on_e_stop(self, msg: Bool) -> None:
         with self.lock:
