@@ -74,3 +74,23 @@ class Rig:
     def start(self, name: str, params: dict) -> None:
         assert self.manager.load(name, params), self.log
         assert self.manager.switch([name], [], 2), self.log
+
+
+def simulated(urdf: str, name: str, z: float, controllers: dict):
+    """A Simulation with the model spawned at height z and its ros_control stepped before every physics step, the
+    controllers loaded and started: (simulation, RosControl)."""
+    from turtle_sim_ode.control.ode_joint import OdeSimJoint
+    from turtle_sim_ode.control.plugin import RosControl, RosControlConfig
+    from turtle_sim_ode.world.simulation import Simulation
+
+    sim = Simulation()
+    sim.spawn_urdf(name, urdf, (0.0, 0.0, z, 0.0, 0.0, 0.0))
+    model = sim.models[name]
+    config = RosControlConfig.read({}, name, sim.physics.time_step)
+    joints = {joint: OdeSimJoint(model.joint(joint)) for joint in model.joints}
+    control = RosControl(config, model.robot, joints, {}, lambda level, text: None)
+    for controller, params in controllers.items():
+        assert control.manager.load(controller, params)
+    assert control.manager.switch(list(controllers), [], 2)
+    sim.step_hooks[name] = control
+    return sim, control

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from control_helpers import ARM_URDF, BASE_URDF, InertiaJoint, Rig
+from control_helpers import ARM_URDF, BASE_URDF, InertiaJoint, Rig, simulated
 
 from turtle_sim_ode.control.hardware import DefaultRobotHWSim, shortest_angular_distance
 from turtle_sim_ode.control.manager import CONTROLLER_TYPES, ControllerManager
@@ -244,3 +244,40 @@ def test_e_stop_zeroes_efforts_and_timing_restarts_after_a_reset():
     control.reset()
     control.step(0.0, 0.001)
     assert len(updates) == 3
+
+
+def test_the_arm_in_ode_reaches_commanded_angles_against_gravity():
+    """The whole chain without ROS: ODE joints, DefaultRobotHWSim, effort JointPositionControllers (the YAML's
+    gains), 3 s of sim time."""
+    gains = {"p": 300.0, "i": 20.0, "d": 30.0, "i_clamp": 10.0}
+    controllers = {
+        f"{joint}_position": {"type": "effort_controllers/JointPositionController", "joint": joint, "pid": gains}
+        for joint in ("shoulder", "elbow")
+    }
+    sim, control = simulated(ARM_URDF, "arm", 0.0, controllers)
+    for joint, angle in (("shoulder", 0.6), ("elbow", -0.8)):
+        control.manager.find(f"{joint}_position").controller.inputs["command"][1](angle)
+    for _ in range(3000):
+        sim.step()
+    assert sim.models["arm"].joint("shoulder").angle() == pytest.approx(0.6, abs=0.02)
+    assert sim.models["arm"].joint("elbow").angle() == pytest.approx(-0.8, abs=0.02)
+
+
+def test_the_base_in_ode_drives_at_the_commanded_speed():
+    """diff_drive_controller on ODE wheel motors: 0.4 m/s commanded, the base's speed after 2 s."""
+    controllers = {
+        "base": {
+            "type": "diff_drive_controller/DiffDriveController",
+            "left_wheel": ["front_left_wheel", "rear_left_wheel"],
+            "right_wheel": ["front_right_wheel", "rear_right_wheel"],
+            "cmd_vel_timeout": 10.0,
+        }
+    }
+    sim, control = simulated(BASE_URDF, "base", 0.21, controllers)
+    for _ in range(500):  # settle on the wheels
+        sim.step()
+    control.manager.find("base").controller.inputs["cmd_vel"][1]((0.4, 0.0))
+    for _ in range(2000):
+        sim.step()
+    linear, _ = sim.models["base"].link_twist("base_link")
+    assert math.hypot(linear[0], linear[1]) == pytest.approx(0.4, abs=0.02)
