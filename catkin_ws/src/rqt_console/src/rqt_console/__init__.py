@@ -1,0 +1,1 @@
+"""rqt_console for systems without ros-visualization's: the ROS log (/rosout_agg) in a filterable table."""

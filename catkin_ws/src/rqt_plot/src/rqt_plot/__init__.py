@@ -1,0 +1,1 @@
+"""rqt_plot for systems without ros-visualization's: numeric message fields plotted against time."""

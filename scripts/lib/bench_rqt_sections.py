@@ -1,0 +1,253 @@
+"""The sections of scripts/bench_rqt.py: rqt_plot with injected data (faster than real time), rqt_plot on
+turtlesim's pose in real time, rqt_console at 1,000 messages a second. Each runs the tool's widget in this
+process (Qt's offscreen platform unless DISPLAY is used), where this process is the ROS node."""
+from __future__ import annotations
+
+import os
+import statistics
+import time
+from typing import Any, Callable, Dict, List
+
+from process_stats import rss_bytes
+from ros_processes import Processes, ToolError
+
+PLOT_RATE_HZ = 62.5  # turtlesim's pose rate
+PLOT_FIELDS = ("x", "y", "theta")
+FRAME_PERIOD_S = 0.04  # rqt_plot's redraw interval
+PROBE_PERIOD_MS = 10  # the event-loop probe of the console section
+
+
+def summary_ms(samples_s: List[float]) -> Dict[str, float]:
+    """median, 95th percentile and maximum of durations in seconds, as milliseconds."""
+    if not samples_s:
+        return {"median_ms": float("nan"), "p95_ms": float("nan"), "max_ms": float("nan"), "count": 0}
+    ordered = sorted(samples_s)
+    return {
+        "median_ms": 1e3 * statistics.median(ordered),
+        "p95_ms": 1e3 * ordered[min(len(ordered) - 1, int(0.95 * len(ordered)))],
+        "max_ms": 1e3 * ordered[-1],
+        "count": len(ordered),
+    }
+
+
+def mib(value: int) -> float:
+    return value / 1048576.0
+
+
+def timed_frame(app, widget) -> float:
+    """One redraw as the widget's timer does it, and the paint it asks for, which the event loop then does."""
+    start = time.perf_counter()
+    widget.update_plot()
+    app.processEvents()
+    return time.perf_counter() - start
+
+
+def make_plot(app, argv: List[str], topic_types: Callable[[], Dict[str, str]]):
+    from rqt_plot.plot_widget import PlotWidget
+
+    widget = PlotWidget(argv, topic_types=topic_types)
+    widget._redraw_timer.stop()  # the benchmark draws the frames itself, timed
+    widget.resize(800, 600)
+    widget.show()
+    app.processEvents()
+    return widget
+
+
+def plot_injected(app, minutes: float, buffer_size: int) -> Dict[str, Any]:
+    """`minutes` of three fields at 62.5 Hz pushed into the data window as fast as frames can be drawn, one frame
+    per 40 ms of data time: redraw time in the first and the last minute, memory before and after."""
+    topic = "/injected/pose"
+    widget = make_plot(
+        app,
+        ["--buffer-size", str(buffer_size), "%s/x:y:theta" % topic],
+        lambda: {topic: "geometry_msgs/Pose2D"},
+    )
+    curves = ["%s/%s" % (topic, field) for field in PLOT_FIELDS]
+    ticks = int(minutes * 60 * PLOT_RATE_HZ)
+    ticks_per_frame = PLOT_RATE_HZ * FRAME_PERIOD_S
+    first_minute, last_minute = [], []
+    rss_start, wall_start, next_frame = rss_bytes(os.getpid()), time.monotonic(), 0.0
+    for tick in range(ticks):
+        data_time = tick / PLOT_RATE_HZ
+        for index, curve in enumerate(curves):
+            widget.window.push(curve, data_time, (index + 1) * ((tick % 500) / 50.0))
+        if tick + 1 >= next_frame:
+            next_frame += ticks_per_frame
+            duration = timed_frame(app, widget)
+            if data_time < 60.0:
+                first_minute.append(duration)
+            if data_time >= minutes * 60 - 60.0:  # both, on a run shorter than two minutes
+                last_minute.append(duration)
+    result = {
+        "data_minutes": minutes,
+        "fields": len(curves),
+        "rate_hz": PLOT_RATE_HZ,
+        "buffer_size": buffer_size,
+        "points_per_curve_at_end": len(widget.window.series[curves[0]]),
+        "frame_first_minute": summary_ms(first_minute),
+        "frame_last_minute": summary_ms(last_minute),
+        "rss_mib_start": mib(rss_start),
+        "rss_mib_end": mib(rss_bytes(os.getpid())),
+        "wall_s": time.monotonic() - wall_start,
+    }
+    widget.shutdown()
+    widget.close()
+    return result
+
+
+def plot_real_time(app, minutes: float, processes: Processes, ros_env: Dict[str, str]) -> Dict[str, Any]:
+    """turtlesim_node (headless) driven in a circle, `rqt_plot /turtle1/pose/x:y:theta` in this process for
+    `minutes` of wall time, frames every 40 ms: redraw time in the first and the last minute, points received
+    against 3 x 62.5 Hz, memory, and how late the frames came."""
+    env = dict(os.environ, **ros_env)
+    env.pop("DISPLAY", None)
+    processes.start(["rosrun", "turtlesim", "turtlesim_node"], env, "turtlesim.log")
+    processes.start(
+        [
+            "rostopic",
+            "pub",
+            "-r",
+            "10",
+            "/turtle1/cmd_vel",
+            "geometry_msgs/Twist",
+            "{linear: {x: 1.5}, angular: {z: 1.0}}",
+        ],
+        env,
+        "cmd_vel.log",
+    )
+    from rqt_plot.ros_plot_data import published_topic_types
+
+    deadline = time.monotonic() + 30.0
+    while "/turtle1/pose" not in published_topic_types():
+        if time.monotonic() > deadline:
+            raise ToolError("turtlesim never published /turtle1/pose:\n" + processes.log_tail("turtlesim.log"))
+        time.sleep(0.1)
+    widget = make_plot(app, ["/turtle1/pose/x:y:theta"], published_topic_types)
+    if len(widget.canvas.curve_names()) != 3:
+        raise ToolError("the plot has curves %s" % widget.canvas.curve_names())
+    seconds = minutes * 60.0
+    first_minute, last_minute, lateness = [], [], []
+    start = time.monotonic()
+    drained_at_start = widget.window.points_drained
+    rss_start = rss_bytes(os.getpid())
+    next_frame = start
+    while True:
+        now = time.monotonic()
+        if now - start >= seconds:
+            break
+        if now < next_frame:
+            app.processEvents()
+            time.sleep(min(0.002, next_frame - now))
+            continue
+        lateness.append(now - next_frame)
+        next_frame += FRAME_PERIOD_S
+        duration = timed_frame(app, widget)
+        if now - start < 60.0:
+            first_minute.append(duration)
+        if now - start >= seconds - 60.0:  # both, on a run shorter than two minutes
+            last_minute.append(duration)
+    elapsed = time.monotonic() - start
+    received = widget.window.points_drained - drained_at_start
+    result = {
+        "wall_minutes": elapsed / 60.0,
+        "points_received": received,
+        "points_expected": int(3 * PLOT_RATE_HZ * elapsed),
+        "frame_first_minute": summary_ms(first_minute),
+        "frame_last_minute": summary_ms(last_minute),
+        "frame_lateness": summary_ms(lateness),
+        "rss_mib_start": mib(rss_start),
+        "rss_mib_end": mib(rss_bytes(os.getpid())),
+    }
+    widget.shutdown()
+    widget.close()
+    return result
+
+
+def console_flood(app, rate: float, seconds: float, processes: Processes, ros_env: Dict[str, str]) -> Dict[str, Any]:
+    """rqt_console in this process while a publisher sends `rate` Log messages a second on /rosout_agg for
+    `seconds`: how late a 10 ms timer fires (the UI's event-loop latency), how long each batch insert takes, and
+    whether every message arrived and the table ends with the newest ones."""
+    from python_qt_binding.QtCore import QTimer
+
+    from rqt_console.console_widget import ConsoleWidget
+    from rqt_console.filters import MessageFilter
+
+    widget = ConsoleWidget([])
+    widget.resize(1000, 600)
+    widget.show()
+    widget.exclude_panel.add_filter(MessageFilter).filter.set_text("^never seen$", regex=True)  # a regex a row
+    widget.proxy.filters_changed()
+    inserts: List[float] = []
+    original_drain = widget.drain
+
+    def timed_drain() -> int:
+        begin = time.perf_counter()
+        count = original_drain()
+        if count:
+            inserts.append(time.perf_counter() - begin)
+        return count
+
+    widget._timer.timeout.disconnect()
+    widget._timer.timeout.connect(timed_drain)
+    lateness: List[float] = []
+    expected_at = [time.monotonic() + PROBE_PERIOD_MS / 1e3]
+
+    def probe() -> None:
+        now = time.monotonic()
+        lateness.append(max(0.0, now - expected_at[0]))
+        expected_at[0] = now + PROBE_PERIOD_MS / 1e3
+
+    probe_timer = QTimer()
+    probe_timer.timeout.connect(probe)
+    probe_timer.start(PROBE_PERIOD_MS)
+    env = dict(os.environ, **ros_env)
+    here = os.path.dirname(os.path.abspath(__file__))
+    publisher = processes.start(
+        [
+            "/usr/bin/python3",
+            os.path.join(here, "bench_rqt_log_publisher.py"),
+            "--rate",
+            str(rate),
+            "--seconds",
+            str(seconds),
+        ],
+        env,
+        "log_publisher.log",
+    )
+    rss_start = rss_bytes(os.getpid())
+    deadline = time.monotonic() + seconds + 60.0
+    while publisher.poll() is None:
+        app.processEvents()
+        time.sleep(0.001)
+        if time.monotonic() > deadline:
+            raise ToolError("the log publisher did not finish:\n" + processes.log_tail("log_publisher.log"))
+    ended = time.monotonic()
+    lines = [line for line in processes.log_tail("log_publisher.log").splitlines() if line.startswith("sent ")]
+    if not lines:
+        raise ToolError("the log publisher failed:\n" + processes.log_tail("log_publisher.log"))
+    sent = int(lines[-1].split()[1])
+    newest = "bench message %d" % (sent - 1)
+    while time.monotonic() < ended + 10.0:
+        record = widget.model.record(0)
+        if record is not None and record.message == newest:
+            break
+        app.processEvents()
+        time.sleep(0.005)
+    probe_timer.stop()
+    record = widget.model.record(0)
+    result = {
+        "rate_per_s": rate,
+        "seconds": seconds,
+        "sent": sent,
+        "received": widget.queue.received,
+        "kept": widget.model.rowCount(),
+        "limit": widget.model.limit,
+        "newest_on_top": record is not None and record.message == newest,
+        "event_loop_latency": summary_ms(lateness),
+        "batch_insert": summary_ms(inserts),
+        "rss_mib_start": mib(rss_start),
+        "rss_mib_end": mib(rss_bytes(os.getpid())),
+    }
+    widget.shutdown()
+    widget.close()
+    return result
