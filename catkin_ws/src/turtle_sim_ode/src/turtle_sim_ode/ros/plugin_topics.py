@@ -12,10 +12,10 @@ import ode
 import rospy
 from gazebo_msgs.msg import ContactsState, ContactState
 from geometry_msgs.msg import Point, Twist, Vector3, Wrench
+from kobuki_msgs.msg import BumperEvent, CliffEvent
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, LaserScan
 from std_msgs.msg import Empty as EmptyMsg
-from turtle_sim_ode_msgs.msg import BumperEvent, CliffEvent
 
 from turtle_sim_ode.models.builder import BuiltModel, quat_from_rpy, quat_multiply
 from turtle_sim_ode.physics.world import PhysicsWorld
@@ -392,7 +392,7 @@ class ImuPublisher(Periodic):
 
 
 class BumperEventPublisher(Periodic):
-    """The Kobuki plugin's bumper events: one turtle_sim_ode_msgs/BumperEvent (= kobuki_msgs) per change."""
+    """The Kobuki plugin's bumper events: one kobuki_msgs/BumperEvent per change."""
 
     def __init__(self, sensor: BumperSensor, topic: str, rate: float) -> None:
         super().__init__(period(rate))
@@ -409,7 +409,7 @@ class BumperEventPublisher(Periodic):
 
 
 class CliffEventPublisher(Periodic):
-    """The Kobuki plugin's cliff events: one turtle_sim_ode_msgs/CliffEvent per change, with the distance to
+    """The Kobuki plugin's cliff events: one kobuki_msgs/CliffEvent per change, with the distance to
     the floor in cm (``bottom``; the ray's range when it sees nothing)."""
 
     def __init__(self, sensor: CliffSensor, topic: str, rate: float) -> None:
