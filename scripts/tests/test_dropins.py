@@ -57,7 +57,9 @@ def install_system_package(workspace, name):
 
 
 def apply(workspace, *extra, env=None):
-    result = run("apply", "--src", str(workspace / "ws" / "src"), "--prefix", str(workspace / "system"), *extra, env=env)
+    result = run(
+        "apply", "--src", str(workspace / "ws" / "src"), "--prefix", str(workspace / "system"), *extra, env=env
+    )
     assert result.returncode == 0, result.stderr
     return result
 

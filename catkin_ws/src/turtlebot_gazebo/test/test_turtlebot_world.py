@@ -112,7 +112,9 @@ class TurtlebotWorld(unittest.TestCase):
         self.assertAlmostEqual(ahead, expected, delta=0.03)
 
     def test_4_bumping_the_bookshelf_presses_center(self):
-        pressed = lambda: any(e.bumper == BumperEvent.CENTER and e.state == BumperEvent.PRESSED for e in BUMPER.messages)
+        pressed = lambda: any(
+            e.bumper == BumperEvent.CENTER and e.state == BumperEvent.PRESSED for e in BUMPER.messages
+        )
         self.assertTrue(stream("/mobile_base/commands/velocity", 0.2, pressed, 20.0), (BUMPER.messages, self.pose()))
         self.assertAlmostEqual(self.pose().position.y, BOOKSHELF_FRONT_Y - KOBUKI_RADIUS, delta=0.05)
 

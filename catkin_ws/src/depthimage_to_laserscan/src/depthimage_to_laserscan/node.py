@@ -76,7 +76,9 @@ class DepthToScan(rospy.SubscribeListener):
     def _on_image(self, image: Image) -> None:
         info = self._info
         if info is None:
-            rospy.logwarn_throttle(5.0, "depthimage_to_laserscan: no camera_info yet for %s", rospy.resolve_name("image"))
+            rospy.logwarn_throttle(
+                5.0, "depthimage_to_laserscan: no camera_info yet for %s", rospy.resolve_name("image")
+            )
             return
         p = self._params
         try:

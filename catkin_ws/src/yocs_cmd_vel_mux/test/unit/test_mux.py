@@ -76,7 +76,9 @@ def test_bad_configuration_is_named(subscribers, complaint):
 
 def test_short_desc_is_optional():
     entry = dict(TURTLEBOT[0], short_desc="stops at cliffs")
-    assert parse_inputs([entry])[0] == Input("Safe reactive controller", "input/safety_controller", 0.2, 10, "stops at cliffs")
+    assert parse_inputs([entry])[0] == Input(
+        "Safe reactive controller", "input/safety_controller", 0.2, 10, "stops at cliffs"
+    )
 
 
 @settings(max_examples=300, deadline=None)
