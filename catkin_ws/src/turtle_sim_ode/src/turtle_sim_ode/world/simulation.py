@@ -17,9 +17,8 @@ from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors
 from turtle_sim_ode.sensors.scene import Scene
 from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
-from turtle_sim_ode.world.plugins import ModelPlugins, read_plugins
+from turtle_sim_ode.world.plugins import DriveRobot, ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
-from turtle_sim_ode.world.robot import DiffDriveRobot
 from turtle_sim_ode.world.values import WorldError, update_rate, vector
 
 Pose6 = Tuple[float, float, float, float, float, float]
@@ -64,7 +63,7 @@ class Simulation(WorldControl):
         PhysicsWorld's."""
         self.physics = PhysicsWorld(physics_params, contact_kernel)
         self.models: Dict[str, BuiltModel] = {}
-        self.robots: Dict[str, DiffDriveRobot] = {}
+        self.robots: Dict[str, DriveRobot] = {}
         self.plugins: Dict[str, ModelPlugins] = {}  # what each model's plugin tags ask of the ROS side
         self.max_update_rate = (
             1.0 / self.physics.time_step if max_update_rate is None else update_rate(max_update_rate, "max_update_rate")
@@ -127,22 +126,18 @@ class Simulation(WorldControl):
         model.name = name
         warnings = list(robot.warnings) + model.warnings
         try:
-            plugins = read_plugins(name, robot.plugins, self._drive_overrides, list(model.joints))
+            plugins = read_plugins(name, robot.plugins, self._drive_overrides, list(model.joints), sensors)
             if len(plugins.drives) > 1:
                 warnings.append(
                     f"model has {len(plugins.drives)} drive plugins: only the first "
                     f"({plugins.drives[0].filename}) is used"
                 )
             if plugins.drives:
-                self.robots[name] = DiffDriveRobot(model, plugins.drives[0])
+                self.robots[name] = plugins.drives[0].make_robot(model)
                 self.robots[name].reset_odometry(self.sim_time)
         except (ModelError, ValueError) as error:
             model.remove()
             raise ModelError(f"model '{name}': {error}") from None
-        plugins.lasers = [laser for laser in sensors.lasers if laser.topic]
-        plugins.imus += sensors.imus
-        plugins.contacts = sensors.contacts
-        plugins.cameras = sensors.cameras
         self.models[name] = model
         self.plugins[name] = plugins
         self._spawned[name] = _Spawned.of(model)

@@ -1,0 +1,72 @@
+"""The ROS side of the plugins a model carries: one adapter module per plugin (or family) that owns its topics, made
+from the config its ROS-free module read (world.plugins, sensors.plugins). ``ADAPTERS`` maps a config's type to its
+module's ``interfaces(context, config)``; adding a plugin is a module and a line here.
+
+Each publisher keeps its own schedule in sim time; SimulatorNode calls publish_due() after every step."""
+from __future__ import annotations
+
+from typing import Callable, Dict, List, Optional
+
+from turtle_sim_ode.ros.periodic import Advertising, ModelContext, Periodic, TopicCheck
+from turtle_sim_ode.ros.plugins import (
+    bumper,
+    camera,
+    diff_drive,
+    imu,
+    joint_state_publisher,
+    kobuki,
+    laser,
+    p3d,
+    skid_steer_drive,
+)
+from turtle_sim_ode.ros.settings import SimulatorSettings
+from turtle_sim_ode.ros.wire import PackedPublisher, release
+from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
+from turtle_sim_ode.sensors.plugins.camera import CameraConfig
+from turtle_sim_ode.sensors.plugins.imu import ImuConfig
+from turtle_sim_ode.sensors.plugins.laser import LaserConfig
+from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
+from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
+from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
+from turtle_sim_ode.world.simulation import Simulation
+
+Adapter = Callable[[ModelContext, object], List[Periodic]]
+ADAPTERS: Dict[type, Adapter] = {
+    KobukiConfig: kobuki.interfaces,
+    DriveConfig: diff_drive.interfaces,
+    SkidSteerConfig: skid_steer_drive.interfaces,
+    GroundTruthConfig: p3d.interfaces,
+    JointStatesConfig: joint_state_publisher.interfaces,
+    ImuConfig: imu.interfaces,
+    LaserConfig: laser.interfaces,
+    ContactConfig: bumper.interfaces,
+    CameraConfig: camera.interfaces,
+}
+
+
+def model_interfaces(
+    name: str,
+    sim: Simulation,
+    settings: SimulatorSettings,
+    tf_broadcaster: PackedPublisher,
+    namespace: str,
+    check_topic: Optional[TopicCheck] = None,
+) -> List[Periodic]:
+    """Every ROS publisher and subscriber the plugins of model `name` ask for (call under the world lock), each
+    topic first shown to ``check_topic``. All or nothing: if one fails, those opened so far are closed again."""
+    interfaces: List[Periodic] = []
+    Advertising.check, Advertising.opened = check_topic, []
+    context = ModelContext(name, sim, settings, tf_broadcaster, namespace)
+    plugins = sim.plugins.get(name)
+    try:
+        for config in plugins.configs if plugins is not None else []:
+            interfaces += ADAPTERS[type(config)](context, config)
+    except BaseException:
+        for interface in interfaces:
+            interface.close()
+        for handle in Advertising.opened:  # those of an interface that failed half-way
+            release(handle)
+        raise
+    finally:
+        Advertising.check, Advertising.opened = None, []
+    return interfaces
