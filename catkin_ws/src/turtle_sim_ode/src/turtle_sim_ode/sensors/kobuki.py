@@ -1,4 +1,5 @@
-"""The Kobuki base's bumpers and cliff sensors, as kobuki_gazebo_plugins simulates them."""
+"""The Kobuki base's bumpers, cliff sensors and wheel drops, and its core sensor state's bits, as
+kobuki_gazebo_plugins simulates them."""
 from __future__ import annotations
 
 import math
@@ -18,10 +19,15 @@ from turtle_sim_ode.sensors.rays import ray_distance, world_geoms
 
 _NO_ROTATION: Quat = (1.0, 0.0, 0.0, 0.0)
 
-# kobuki_msgs/BumperEvent and CliffEvent sensor indices and states.
+# kobuki_msgs/BumperEvent, CliffEvent and WheelDropEvent sensor indices and states.
 LEFT, CENTER, RIGHT = 0, 1, 2
 RELEASED, PRESSED = 0, 1
 FLOOR, CLIFF = 0, 1
+WHEEL_LEFT, WHEEL_RIGHT = 0, 1
+RAISED, DROPPED = 0, 1
+# kobuki_msgs/SensorState bit flags for bumper and cliff (left, centre, right) and wheel_drop (left, right).
+STATE_BITS_LCR = (4, 2, 1)
+STATE_BITS_WHEELS = (2, 1)
 
 # kobuki_gazebo_plugins (gazebo_ros_kobuki_updates.cpp) bumper sectors, angle of the contact
 # measured from the base's +x axis, counter-clockwise: LEFT (30 deg, 90 deg], CENTER
@@ -88,6 +94,11 @@ class BumperSensor:
             if bumper is not None:
                 state[bumper] = True
         return state
+
+    @property
+    def state(self) -> List[bool]:
+        """[left, center, right] as last reported by changes()."""
+        return list(self._reported)
 
     def changes(self) -> List[Tuple[int, int]]:
         """(bumper, PRESSED or RELEASED) for each bumper whose state changed since the last call."""
@@ -171,6 +182,11 @@ class CliffSensor:
         """For each sensor: True when it sees a cliff."""
         return [d > self.threshold for d in self.distances()]
 
+    @property
+    def state(self) -> List[bool]:
+        """[left, front, right]: a cliff, as last reported by changes()."""
+        return list(self._reported)
+
     def changes(self) -> List[Tuple[int, int, float]]:
         """(sensor, CLIFF or FLOOR, distance) for each sensor whose state changed since the last call."""
         events = []
@@ -180,3 +196,48 @@ class CliffSensor:
                 self._reported[sensor] = now
                 events.append((sensor, CLIFF if now else FLOOR, distance))
         return events
+
+
+# --- wheel drop -----------------------------------------------------------------------------
+class WheelDropSensor:
+    """Kobuki's wheel-drop switches: a wheel whose collisions touched nothing during the last step has dropped
+    (kobuki_gazebo_plugins' contact sensors on the wheel links; a wheel's contacts are with the floor or an
+    obstacle, never its own model). Watches contacts from construction on; ``close()`` stops that."""
+
+    def __init__(self, physics: PhysicsWorld, model: BuiltModel, links: Sequence[str]) -> None:
+        self.physics = physics
+        self._watches: List[ContactWatch] = []
+        for link in links:
+            geoms = model.geoms.get(link)
+            if not geoms:
+                self.close()
+                raise KeyError(f"model '{model.name}' has no collision geoms on wheel link '{link}'")
+            self._watches.append(physics.watch_contacts(geoms))
+        self._reported = [False] * len(self._watches)
+
+    def close(self) -> None:
+        for watch in self._watches:
+            self.physics.unwatch_contacts(watch)
+        self._watches = []
+
+    def dropped(self) -> List[bool]:
+        return [not watch.contacts for watch in self._watches]
+
+    @property
+    def state(self) -> List[bool]:
+        """[left, right]: dropped, as last reported by changes()."""
+        return list(self._reported)
+
+    def changes(self) -> List[Tuple[int, int]]:
+        """(wheel, DROPPED or RAISED) for each wheel whose state changed since the last call."""
+        events = []
+        for wheel, now in enumerate(self.dropped()):
+            if now != self._reported[wheel]:
+                self._reported[wheel] = now
+                events.append((wheel, DROPPED if now else RAISED))
+        return events
+
+
+def state_bits(flags: Sequence[bool], bits: Sequence[int]) -> int:
+    """kobuki_msgs/SensorState's bit field of the flags that are set (``bits``: STATE_BITS_LCR or _WHEELS)."""
+    return sum(bit for flag, bit in zip(flags, bits) if flag)
