@@ -2,7 +2,11 @@
 """rostest node for turtlebot_world.launch as typed: a kobuki_msgs subscriber that is there before the robot spawns
 does not stop the spawn; the description has 34 links; the multiplexer is idle, then lets navigation drive and
 teleoperation take over; /scan comes from the depth image in camera_depth_frame and sees the bookshelf; driving on
-into the bookshelf presses the CENTER bumper. The robot is turned to face the bookshelf first."""
+into the bookshelf presses the CENTER bumper (an event, and the BUMPER_CENTRE bit of sensors/core); with motor power
+off the robot does not move; driving off a 3 cm step gives cliff events (front first), both wheels' drop events and
+the sensors/core bits. The robot is turned to face the bookshelf first. Expected behaviour from yujinrobot/
+kobuki_desktop (melodic) kobuki_gazebo_plugins/src/gazebo_ros_kobuki_updates.cpp (updateBumper, updateCliffSensor,
+updateWheelDrop, pubSensorState, propagateVelocityCommands) and gazebo_ros_kobuki.cpp (motorPowerCB)."""
 import math
 import sys
 import threading
@@ -14,7 +18,8 @@ import rostest
 from gazebo_msgs.msg import ModelState
 from gazebo_msgs.srv import GetModelState, SetModelState
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
-from kobuki_msgs.msg import BumperEvent
+from gazebo_msgs.srv import SpawnModel
+from kobuki_msgs.msg import BumperEvent, CliffEvent, MotorPower, SensorState, WheelDropEvent
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
@@ -111,12 +116,64 @@ class TurtlebotWorld(unittest.TestCase):
         expected = BOOKSHELF_BACK_Y - self.pose().position.y + CAMERA_BEHIND_BASE
         self.assertAlmostEqual(ahead, expected, delta=0.03)
 
+    def place(self, x, y, z, yaw):
+        pose = Pose(Point(x, y, z), Quaternion(0, 0, math.sin(yaw / 2), math.cos(yaw / 2)))
+        result = rospy.ServiceProxy("/gazebo/set_model_state", SetModelState)(
+            ModelState("mobile_base", pose, Twist(), "")
+        )
+        self.assertTrue(result.success, result.status_message)
+        rospy.sleep(0.5)  # sim time: settle
+
     def test_4_bumping_the_bookshelf_presses_center(self):
+        core = Recorder("/mobile_base/sensors/core", SensorState)
         pressed = lambda: any(
             e.bumper == BumperEvent.CENTER and e.state == BumperEvent.PRESSED for e in BUMPER.messages
         )
         self.assertTrue(stream("/mobile_base/commands/velocity", 0.2, pressed, 20.0), (BUMPER.messages, self.pose()))
         self.assertAlmostEqual(self.pose().position.y, BOOKSHELF_FRONT_Y - KOBUKI_RADIUS, delta=0.05)
+        self.assertTrue(core.wait_for(lambda m: m.bumper == SensorState.BUMPER_CENTRE, self.timeout))
+
+    def test_5_motor_power_off_stops_the_wheels(self):
+        self.place(0.0, 0.0, 0.0, -math.pi / 2)  # facing away from the bookshelf
+        power = rospy.Publisher("/mobile_base/commands/motor_power", MotorPower, queue_size=1, latch=True)
+        power.publish(MotorPower(MotorPower.OFF))
+        start = self.pose().position
+        moved = lambda: math.hypot(self.pose().position.x - start.x, self.pose().position.y - start.y) > 0.05
+        # a latched message reaches the simulator once it has connected: wait for that, then drive for 2 s
+        deadline = rospy.Time.now() + rospy.Duration(self.timeout)
+        while power.get_num_connections() == 0 and rospy.Time.now() < deadline:
+            rospy.sleep(0.05)
+        self.assertFalse(stream("/mobile_base/commands/velocity", 0.2, moved, 2.0), "moved with the motors off")
+        power.publish(MotorPower(MotorPower.ON))
+        self.assertTrue(stream("/mobile_base/commands/velocity", 0.2, moved, 5.0), "did not move with the motors on")
+        power.unregister()
+
+    def test_6_driving_off_a_step_gives_cliff_and_wheel_drop_events(self):
+        step = (
+            '<sdf version="1.6"><model name="step"><static>true</static><link name="link"><collision name="c">'
+            "<geometry><box><size>2 2 0.03</size></box></geometry></collision></link></model></sdf>"
+        )
+        spawn = rospy.ServiceProxy("/gazebo/spawn_sdf_model", SpawnModel)
+        result = spawn("step", step, "", Pose(Point(-2, -5, 0.015), Quaternion(0, 0, 0, 1)), "")
+        self.assertTrue(result.success, result.status_message)
+        self.place(-1.6, -5.0, 0.04, 0.0)  # on the step, 0.6 m from its edge at x = -1, facing it
+        cliffs = Recorder("/mobile_base/events/cliff", CliffEvent)
+        drops = Recorder("/mobile_base/events/wheel_drop", WheelDropEvent)
+        core = Recorder("/mobile_base/sensors/core", SensorState)
+        landed = lambda: sum(e.state == WheelDropEvent.RAISED for e in drops.messages) >= 2
+        self.assertTrue(stream("/mobile_base/commands/velocity", 0.2, landed, 10.0), (cliffs.messages, drops.messages))
+        events = [(e.sensor, e.state) for e in cliffs.messages]
+        self.assertEqual(events[0], (CliffEvent.CENTER, CliffEvent.CLIFF), events)
+        for sensor in (CliffEvent.LEFT, CliffEvent.CENTER, CliffEvent.RIGHT):
+            self.assertIn((sensor, CliffEvent.CLIFF), events)
+        self.assertTrue(cliffs.wait_for(lambda e: e.state == CliffEvent.FLOOR, self.timeout), events)
+        wheels = {(e.wheel, e.state) for e in drops.messages}
+        self.assertTrue(
+            {(WheelDropEvent.LEFT, WheelDropEvent.DROPPED), (WheelDropEvent.RIGHT, WheelDropEvent.DROPPED)} <= wheels
+        )
+        self.assertTrue(any(m.cliff == 7 for m in core.messages), "no sensors/core with CLIFF_LEFT|CENTRE|RIGHT")
+        self.assertTrue(any(m.wheel_drop == 3 for m in core.messages), "no sensors/core with both wheels dropped")
+        self.assertLess(self.pose().position.z, 0.005)  # down on the floor
 
 
 if __name__ == "__main__":
