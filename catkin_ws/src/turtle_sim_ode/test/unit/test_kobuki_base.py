@@ -8,6 +8,7 @@ from __future__ import annotations
 import pytest
 from conftest import TurtleSim
 
+from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.sensors.kobuki import (
     DROPPED,
     RAISED,
@@ -16,8 +17,11 @@ from turtle_sim_ode.sensors.kobuki import (
     WHEEL_LEFT,
     WHEEL_RIGHT,
     WheelDropSensor,
+    offsets_in,
+    sensor_links,
     state_bits,
 )
+from turtle_sim_ode.world.plugins import kobuki
 
 WHEELS = ["wheel_left_link", "wheel_right_link"]
 
@@ -71,3 +75,33 @@ def test_motor_power_off_holds_the_wheels_and_drops_the_command():
     assert sim.pose()[0] == pytest.approx(stopped, abs=0.005)
     sim.run(1.0, (0.2, 0.0))
     assert sim.pose()[0] > stopped + 0.1
+
+
+def test_plugin_names_its_sensors_as_gazebo_ros_kobuki_loads_reads_them():
+    """GazeboRosKobuki::Load (gazebo_ros_kobuki_loads.cpp) takes the sensors by the names in these tags."""
+    tags = {
+        "cliff_sensor_left_name": "cl",
+        "cliff_sensor_center_name": "cc",
+        "cliff_sensor_right_name": "cr",
+        "bumper_name": "bump",
+        "imu_name": "gyro",
+        "wheel_drop_left_sensor_name": "wl",
+        "wheel_drop_right_sensor_name": "wr",
+    }
+    config = kobuki.read("mobile_base", GazeboPlugin(kobuki.KOBUKI, "kobuki_controller", tags), {})
+    assert config.cliff_sensors == ("cl", "cc", "cr") and config.bumper_sensor == "bump"
+    assert config.imu_sensor == "gyro" and config.wheel_drop_sensors == ("wl", "wr")
+    defaults = kobuki.read("mobile_base", GazeboPlugin(kobuki.KOBUKI, "kobuki_controller", {}), {})
+    # kobuki_description's kobuki_gazebo.urdf.xacro names
+    assert defaults.cliff_sensors == ("cliff_sensor_left", "cliff_sensor_front", "cliff_sensor_right")
+    assert (defaults.bumper_sensor, defaults.imu_sensor) == ("bumpers", "imu")
+    assert defaults.wheel_drop_sensors == ("wheel_drop_left", "wheel_drop_right")
+
+
+def test_sensor_links_and_their_offsets_on_the_base():
+    sim = TurtleSim()
+    assert sensor_links(sim.model.robot, "ray") == {"laser": "base_scan"}  # the simulator's TurtleBot
+    assert sensor_links(sim.model.robot, "contact") == {}
+    left, right = offsets_in(sim.model, "base_link", WHEELS)
+    assert left == pytest.approx((0.0, 0.115, 0.0248), abs=1e-6)
+    assert right == pytest.approx((0.0, -0.115, 0.0248), abs=1e-6)

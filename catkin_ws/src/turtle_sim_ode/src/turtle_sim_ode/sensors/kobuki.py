@@ -3,7 +3,7 @@ kobuki_gazebo_plugins simulates them."""
 from __future__ import annotations
 
 import math
-from typing import List, Optional, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import ode
 
@@ -12,8 +12,10 @@ from turtle_sim_ode.models.builder import (
     Quat,
     Vec3,
     compose,
+    inverse,
     quat_rotate,
 )
+from turtle_sim_ode.models.urdf import RobotModel
 from turtle_sim_ode.physics.world import ContactWatch, PhysicsWorld
 from turtle_sim_ode.sensors.rays import ray_distance, world_geoms
 
@@ -241,3 +243,20 @@ class WheelDropSensor:
 def state_bits(flags: Sequence[bool], bits: Sequence[int]) -> int:
     """kobuki_msgs/SensorState's bit field of the flags that are set (``bits``: STATE_BITS_LCR or _WHEELS)."""
     return sum(bit for flag, bit in zip(flags, bits) if flag)
+
+
+# --- where a model's sensors are -------------------------------------------------------------
+def sensor_links(robot: RobotModel, kind: str) -> Dict[str, str]:
+    """{sensor name: its link} of the model's <sensor type=kind> blocks (the first of a name wins)."""
+    found: Dict[str, str] = {}
+    for block in robot.sensors:
+        name = block.element.get("name", "")
+        if block.element.get("type") == kind and block.link and name not in found:
+            found[name] = block.link
+    return found
+
+
+def offsets_in(model: BuiltModel, base: str, links: Sequence[str]) -> List[Vec3]:
+    """Each link frame's origin in ``base``'s frame (constant where fixed joints join them, as for sensors)."""
+    to_base = inverse(model.link_transform(base))
+    return [compose(to_base, model.link_transform(link))[0] for link in links]

@@ -17,11 +17,14 @@ from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import release
 from turtle_sim_ode.sensors.imu import ImuSensor
 from turtle_sim_ode.sensors.kobuki import (
+    KOBUKI_CLIFF_OFFSETS,
     STATE_BITS_LCR,
     STATE_BITS_WHEELS,
     BumperSensor,
     CliffSensor,
     WheelDropSensor,
+    offsets_in,
+    sensor_links,
     state_bits,
 )
 from turtle_sim_ode.world.plugins import DiffDriveRobot
@@ -140,20 +143,28 @@ class MotorPowerListener(Periodic):
 def kobuki_sensors(
     sim: Simulation, model: BuiltModel, robot: DiffDriveRobot, prefix: str, settings: SimulatorSettings
 ) -> List[Periodic]:
-    """The Kobuki plugin's bumper, cliff and wheel-drop events and its core sensor state; its bumper and cliff
-    sensors sit on base_link (kobuki_description), else on the root link; the wheel drops on the wheels' links."""
-    link = "base_link" if model.geoms.get("base_link") else model.root_link
+    """The Kobuki plugin's bumper, cliff and wheel-drop events and its core sensor state, from the model's sensors
+    the plugin names (kobuki_description's: the bumpers' contact sensor on base_link, three cliff rays, a contact
+    sensor on each wheel); without them, on base_link (else the root link) with kobuki_description's cliff
+    positions, and on the wheel joints' links."""
+    config = robot.config
+    contacts, rays = sensor_links(model.robot, "contact"), sensor_links(model.robot, "ray")
+    link = contacts.get(config.bumper_sensor) or ("base_link" if model.geoms.get("base_link") else model.root_link)
     if not model.geoms.get(link):
         rospy.logwarn("model %s: no collision geoms on [%s]: no bumper, cliff or wheel-drop events", model.name, link)
         return []
-    wheels = [model.robot.joints[wheel.name].child for wheel in (robot.left, robot.right)]
+    cliff_links = [rays.get(sensor) for sensor in config.cliff_sensors]
+    cliff_offsets = offsets_in(model, link, cliff_links) if all(cliff_links) else KOBUKI_CLIFF_OFFSETS
+    wheels = [contacts.get(sensor) for sensor in config.wheel_drop_sensors]
+    if not all(wheels):
+        wheels = [model.robot.joints[wheel.name].child for wheel in (robot.left, robot.right)]
     if not all(model.geoms.get(wheel) for wheel in wheels):
         rospy.logwarn("model %s: wheel links %s without collision geoms: no wheel-drop events", model.name, wheels)
         wheels = []
     sensors: list = [BumperSensor(sim.physics, model, link)]
     found: List[Periodic] = []
     try:
-        sensors.append(CliffSensor(sim.physics, model, link, robot.config.cliff_threshold))
+        sensors.append(CliffSensor(sim.physics, model, link, config.cliff_threshold, cliff_offsets))
         sensors.append(WheelDropSensor(sim.physics, model, wheels))
         bumper, cliff, drops = sensors
         found.append(BumperEventPublisher(bumper, prefix + "events/bumper", settings.publish_rate))
@@ -190,8 +201,10 @@ def interfaces(context: ModelContext, config: KobukiConfig) -> List[Periodic]:
             True,
         )
     )
-    # The Kobuki plugin's gyro, on <model>/sensors/imu_data as kobuki_gazebo_plugins publishes it.
-    imu_link = "imu_link" if "imu_link" in model.links else base
+    # The Kobuki plugin's gyro (its imu sensor's link), on <model>/sensors/imu_data as kobuki_gazebo_plugins has it.
+    imu_link = sensor_links(model.robot, "imu").get(config.imu_sensor) or (
+        "imu_link" if "imu_link" in model.links else base
+    )
     imu = ImuSensor(model, imu_link, tuple(sim.physics.params.gravity))
     found.append(
         ImuPublisher(imu, topic_prefix(namespace) + name + "/sensors/imu_data", imu_link, settings.publish_rate)
