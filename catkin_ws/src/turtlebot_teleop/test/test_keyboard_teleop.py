@@ -6,12 +6,8 @@ the robot drives forward; 'k' stops at once; Ctrl-C ends the node with a zero tw
 from __future__ import annotations
 
 import os
-import pty
-import select
 import signal
-import subprocess
 import sys
-import termios
 import threading
 import time
 import unittest
@@ -21,6 +17,7 @@ import rostest
 from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import Twist
 from std_msgs.msg import String
+from workspace_testing.terminal import PseudoTerminal
 
 
 class KeyboardTeleopOnPty(unittest.TestCase):
@@ -31,25 +28,12 @@ class KeyboardTeleopOnPty(unittest.TestCase):
         self.changed = threading.Condition()
         self.sub = rospy.Subscriber("/cmd_vel_mux/input/teleop", Twist, self.on_twist, queue_size=100)
         self.active_sub = rospy.Subscriber("/cmd_vel_mux/active", String, self.on_active, queue_size=10)
-        self.master, self.slave = pty.openpty()
-        self.before = termios.tcgetattr(self.slave)
-        self.output = b""
-        self.process = subprocess.Popen(
-            ["roslaunch", "turtlebot_teleop", "keyboard_teleop.launch"],
-            stdin=self.slave,
-            stdout=self.slave,
-            stderr=self.slave,
-            start_new_session=True,
-        )
+        self.terminal = PseudoTerminal(["roslaunch", "turtlebot_teleop", "keyboard_teleop.launch"])
 
     def tearDown(self):
         self.sub.unregister()
         self.active_sub.unregister()
-        if self.process.poll() is None:
-            os.killpg(self.process.pid, signal.SIGKILL)
-            self.process.wait(5)
-        os.close(self.master)
-        os.close(self.slave)
+        self.terminal.close()
 
     def on_twist(self, msg):
         with self.changed:
@@ -62,19 +46,14 @@ class KeyboardTeleopOnPty(unittest.TestCase):
             self.changed.notify_all()
 
     def read_until(self, text):
-        deadline = time.monotonic() + self.timeout
-        while text not in self.output:
-            remaining = deadline - time.monotonic()
-            self.assertGreater(remaining, 0, "%r not seen; output: %r" % (text, self.output[-2000:]))
-            ready, _, _ = select.select([self.master], [], [], remaining)
-            if ready:
-                self.output += os.read(self.master, 4096)
+        seen = self.terminal.read_until(text, self.timeout)
+        self.assertTrue(seen, "%r not seen; output: %r" % (text, self.terminal.output[-2000:]))
 
     def hold(self, key, until):
         """Press `key` every 50 ms (a held key repeats) until until() holds on the recorded twists."""
         deadline = time.monotonic() + self.timeout
         while True:
-            os.write(self.master, key)
+            self.terminal.write(key)
             with self.changed:
                 if self.changed.wait_for(until, 0.05):
                     return
@@ -102,13 +81,13 @@ class KeyboardTeleopOnPty(unittest.TestCase):
 
         self.hold(b"k", lambda: self.twists[-1] == (0.0, 0.0))
         count = len(self.twists)
-        os.write(self.master, b"\x03")
+        self.terminal.write(b"\x03")
         with self.changed:  # the node's last twist is a zero one, then it ends
             self.assertTrue(self.changed.wait_for(lambda: len(self.twists) > count, self.timeout))
         self.assertEqual(self.twists[-1], (0.0, 0.0))
-        os.killpg(self.process.pid, signal.SIGINT)  # roslaunch itself, as Ctrl-C in a terminal would
-        self.assertEqual(self.process.wait(self.timeout), 0)
-        self.assertEqual(termios.tcgetattr(self.slave), self.before, "terminal settings not restored")
+        os.killpg(self.terminal.process.pid, signal.SIGINT)  # roslaunch itself, as Ctrl-C in a terminal would
+        self.assertEqual(self.terminal.process.wait(self.timeout), 0)
+        self.assertEqual(self.terminal.settings(), self.terminal.settings_before, "terminal settings not restored")
 
 
 if __name__ == "__main__":

@@ -46,6 +46,16 @@ KOBUKI_CLIFF_RANGE = 0.15
 KOBUKI_CLIFF_THRESHOLD = 0.04
 
 
+def report_changes(reported: List[bool], current: Sequence[bool], on: int, off: int) -> List[Tuple[int, int]]:
+    """(index, on or off) for each flag of ``current`` that differs from ``reported``, which is updated."""
+    events = []
+    for index, now in enumerate(current):
+        if now != reported[index]:
+            reported[index] = now
+            events.append((index, on if now else off))
+    return events
+
+
 # --- bumper --------------------------------------------------------------------------------
 def bumper_of(angle: float) -> Optional[int]:
     """Kobuki bumper pressed by a contact at ``angle`` (rad from the base's +x, CCW), or None."""
@@ -104,12 +114,7 @@ class BumperSensor:
 
     def changes(self) -> List[Tuple[int, int]]:
         """(bumper, PRESSED or RELEASED) for each bumper whose state changed since the last call."""
-        events = []
-        for bumper, now in enumerate(self.pressed()):
-            if now != self._reported[bumper]:
-                self._reported[bumper] = now
-                events.append((bumper, PRESSED if now else RELEASED))
-        return events
+        return report_changes(self._reported, self.pressed(), PRESSED, RELEASED)
 
 
 # --- cliff ----------------------------------------------------------------------------------
@@ -232,12 +237,7 @@ class WheelDropSensor:
 
     def changes(self) -> List[Tuple[int, int]]:
         """(wheel, DROPPED or RAISED) for each wheel whose state changed since the last call."""
-        events = []
-        for wheel, now in enumerate(self.dropped()):
-            if now != self._reported[wheel]:
-                self._reported[wheel] = now
-                events.append((wheel, DROPPED if now else RAISED))
-        return events
+        return report_changes(self._reported, self.dropped(), DROPPED, RAISED)
 
 
 def state_bits(flags: Sequence[bool], bits: Sequence[int]) -> int:
