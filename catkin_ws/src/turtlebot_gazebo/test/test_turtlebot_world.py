@@ -21,7 +21,7 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from gazebo_msgs.srv import SpawnModel
 from kobuki_msgs.msg import BumperEvent, CliffEvent, MotorPower, SensorState, WheelDropEvent
 from nav_msgs.msg import Odometry
-from sensor_msgs.msg import LaserScan
+from sensor_msgs.msg import Imu, LaserScan
 from std_msgs.msg import String
 
 # Where the playground's bookshelf stands (worlds/playground.world): its front board at y = 1.53 - 0.39, its back
@@ -90,6 +90,10 @@ class TurtlebotWorld(unittest.TestCase):
         links = ET.fromstring(rospy.get_param("/robot_description")).findall("link")
         self.assertEqual(len(links), 34)  # as turtlebot_description's kobuki_hexagons_kinect
         self.assertEqual(BUMPER.sub.get_num_connections(), 1, "the early kobuki_msgs subscriber is not connected")
+        # kobuki_gazebo_plugins stamps the gyro with the joint states' header: base_link (updateIMU)
+        imu = rospy.wait_for_message("/mobile_base/sensors/imu_data", Imu, self.timeout)
+        self.assertEqual(imu.header.frame_id, "base_link")
+        self.assertAlmostEqual(imu.linear_acceleration.z, 9.8, delta=0.3)
 
     def test_2_mux_idle_then_navigation_then_teleop(self):
         active = rospy.wait_for_message("/cmd_vel_mux/active", String, self.timeout)

@@ -9,7 +9,7 @@ from kobuki_msgs.msg import BumperEvent, CliffEvent, MotorPower, SensorState, Wh
 
 from turtle_sim_ode.models.builder import BuiltModel
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, publisher, subscriber, topic_prefix
-from turtle_sim_ode.ros.plugin_topics import period
+from turtle_sim_ode.ros.plugin_topics import KOBUKI_JOINT_STATES_FRAME, period
 from turtle_sim_ode.ros.plugins.drive import DriveInterface
 from turtle_sim_ode.ros.plugins.imu import ImuPublisher
 from turtle_sim_ode.ros.plugins.p3d import GroundTruthPublisher
@@ -201,13 +201,14 @@ def interfaces(context: ModelContext, config: KobukiConfig) -> List[Periodic]:
             True,
         )
     )
-    # The Kobuki plugin's gyro (its imu sensor's link), on <model>/sensors/imu_data as kobuki_gazebo_plugins has it.
-    imu_link = sensor_links(model.robot, "imu").get(config.imu_sensor) or (
-        "imu_link" if "imu_link" in model.links else base
-    )
+    # The gyro: the link of the imu sensor the plugin names, whose readings kobuki_gazebo_plugins stamps with
+    # base_link's frame (updateIMU copies the joint states' header); else the simulator's own TurtleBot's imu_link.
+    named = sensor_links(model.robot, "imu").get(config.imu_sensor)
+    imu_link = named or ("imu_link" if "imu_link" in model.links else base)
+    imu_frame = KOBUKI_JOINT_STATES_FRAME if named else imu_link
     imu = ImuSensor(model, imu_link, tuple(sim.physics.params.gravity))
     found.append(
-        ImuPublisher(imu, topic_prefix(namespace) + name + "/sensors/imu_data", imu_link, settings.publish_rate)
+        ImuPublisher(imu, topic_prefix(namespace) + name + "/sensors/imu_data", imu_frame, settings.publish_rate)
     )
     found += kobuki_sensors(sim, model, robot, topic_prefix(namespace) + name + "/", settings)
     found.append(MotorPowerListener(name, robot, topic_prefix(namespace) + name + "/commands/motor_power"))
