@@ -89,14 +89,19 @@ def room_sdf() -> str:
     return ROOM_SDF.format(links="".join(links))
 
 
-def turtlebot_in_room(camera: Optional[Tuple[int, int, float]]) -> Tuple[Any, List[Callable[[], None]]]:
-    """The Simulation and, with ``camera`` (width, height, rate), one renderer-and-packer per camera."""
+def turtlebot_in_room(
+    camera: Optional[Tuple[int, int, float]], sensor_block: str = ""
+) -> Tuple[Any, List[Callable[[], None]]]:
+    """The Simulation and, with ``camera`` (width, height, rate), one renderer-and-packer per camera;
+    ``sensor_block``: URDF text that replaces the robot's closing tag (another sensor, bench_lidar's)."""
     from turtle_sim_ode.world.simulation import Simulation
 
     with open(URDF_PATH) as urdf_file:
         urdf = urdf_file.read()
     if camera is not None:
         urdf = with_camera(urdf, camera)
+    if sensor_block:
+        urdf = urdf.replace("</robot>", sensor_block)
     sim = Simulation()
     sim.spawn_urdf(MODEL, urdf, (0.0, -1.0, 0.0, 0.0, 0.0, 0.0))
     sim.spawn_sdf("room", room_sdf())

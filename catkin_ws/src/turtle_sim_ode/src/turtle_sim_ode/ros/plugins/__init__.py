@@ -12,12 +12,14 @@ from turtle_sim_ode.ros.plugins import (
     bumper,
     camera,
     diff_drive,
+    hector_imu,
     imu,
     joint_state_publisher,
     kobuki,
     laser,
     p3d,
     skid_steer_drive,
+    velodyne,
 )
 from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import PackedPublisher, release
@@ -25,7 +27,9 @@ from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.plugins.imu import ImuConfig
 from turtle_sim_ode.sensors.plugins.laser import LaserConfig
+from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
+from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
 from turtle_sim_ode.world.simulation import Simulation
@@ -41,6 +45,8 @@ ADAPTERS: Dict[type, Adapter] = {
     LaserConfig: laser.interfaces,
     ContactConfig: bumper.interfaces,
     CameraConfig: camera.interfaces,
+    VelodyneConfig: velodyne.interfaces,
+    HectorImuConfig: hector_imu.interfaces,
 }
 
 

@@ -7,10 +7,10 @@ from __future__ import annotations
 from typing import Callable, Dict, List, NamedTuple, Optional, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.sensors.plugins import bumper, camera, imu, laser
+from turtle_sim_ode.sensors.plugins import bumper, camera, imu, laser, velodyne
 
 SIMULATED_TYPES = ("ray", "gpu_ray", "imu", "contact", "camera", "depth")
-MODULES = (laser, imu, bumper, camera)
+MODULES = (laser, velodyne, imu, bumper, camera)
 
 
 class SensorPlugin(NamedTuple):

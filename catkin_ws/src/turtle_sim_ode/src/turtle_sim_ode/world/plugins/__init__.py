@@ -13,7 +13,15 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.sensors.config import SensorBlocks
 from turtle_sim_ode.world.diff_drive import DiffDriveController, DiffDriveParams
-from turtle_sim_ode.world.plugins import diff_drive, imu, joint_state_publisher, kobuki, p3d, skid_steer_drive
+from turtle_sim_ode.world.plugins import (
+    diff_drive,
+    hector_imu,
+    imu,
+    joint_state_publisher,
+    kobuki,
+    p3d,
+    skid_steer_drive,
+)
 from turtle_sim_ode.world.plugins.diff_drive import DIFF_DRIVE, DiffDriveRobot, DriveConfig
 from turtle_sim_ode.world.plugins.imu import IMU
 from turtle_sim_ode.world.plugins.joint_state_publisher import JOINT_STATE_PUBLISHER, JointStatesConfig
@@ -24,7 +32,7 @@ __all__ = ["DIFF_DRIVE", "IMU", "JOINT_STATE_PUBLISHER", "KOBUKI", "P3D", "DRIVE
 __all__ += ["DiffDriveRobot", "DriveRobot", "DriveConfig", "GroundTruthConfig", "JointStatesConfig", "ModelPlugins"]
 __all__ += ["find_body", "read_plugins", "unsupported_warning"]
 
-MODULES = (kobuki, diff_drive, skid_steer_drive, p3d, joint_state_publisher, imu)
+MODULES = (kobuki, diff_drive, skid_steer_drive, p3d, joint_state_publisher, imu, hector_imu)
 MODEL_PLUGINS: Dict[str, Callable[[str, GazeboPlugin, Mapping[str, object]], object]] = {
     name: module.read for module in MODULES for name in module.MODEL_PLUGINS
 }
