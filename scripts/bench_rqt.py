@@ -35,23 +35,27 @@ DEFAULT_JSON = os.path.join(REPO, "bench_results", "bench_rqt.json")
 
 
 def frame_row(name: str, result: Dict[str, Any]) -> str:
-    first, last = result["frame_first_minute"], result["frame_last_minute"]
-    return "%-26s %8.2f %8.2f %9.2f %9.2f %8.1f %8.1f" % (
+    first, last, fresh = (result["frame_" + when] for when in ("first_minute", "last_minute", "fresh_last_minute"))
+    return "%-24s %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.1f %7.1f" % (
         name,
         first["median_ms"],
         first["p95_ms"],
         last["median_ms"],
         last["p95_ms"],
+        fresh["median_ms"],
+        fresh["p95_ms"],
         result["rss_mib_start"],
         result["rss_mib_end"],
     )
 
 
 def table(results: Dict[str, Any]) -> str:
+    header = "%-24s %7s %7s %7s %7s %7s %7s %7s %7s"
     lines = [
-        "rqt_plot: redraw per frame (ms), first and last minute; memory of the process (MiB)",
-        "%-26s %8s %8s %9s %9s %8s %8s" % ("", "first", "p95", "last", "p95", "RSS", "RSS"),
-        "%-26s %8s %8s %9s %9s %8s %8s" % ("", "median", "", "median", "", "start", "end"),
+        "rqt_plot: redraw per frame (ms) in the first and the last minute, and of a twin plot cleared every minute",
+        "(a fresh plot at the same moment, drawn alternately with it); memory of the process (MiB)",
+        header % ("", "first", "", "last", "", "fresh", "at end", "RSS", "RSS"),
+        header % ("", "median", "p95", "median", "p95", "median", "p95", "start", "end"),
     ]
     injected = results.get("plot_injected", {})
     if "error" in injected:
