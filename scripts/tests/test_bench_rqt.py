@@ -51,4 +51,5 @@ def test_console_section_kept_up(results):
     assert console["sent"] == 3000 and console["received"] == console["sent"] == console["kept"]
     assert console["newest_on_top"]
     assert console["event_loop_latency"]["count"] > 0 and console["batch_insert"]["count"] > 0
+    assert console["event_loop_latency_idle"]["count"] > 0
     assert 0.0 <= results["machine"]["stolen_cpu_share"] < 1.0
