@@ -73,6 +73,7 @@ class FramePair:
         self.minutes = minutes
         self.frames: Dict[str, List[float]] = {"first_minute": [], "last_minute": [], "fresh_last_minute": []}
         self._cleared_minute = 0
+        self._count = 0
 
     def frame(self, elapsed_s: float) -> None:
         """Draws both at `elapsed_s` into the run (data time or wall time)."""
@@ -80,7 +81,8 @@ class FramePair:
         if int(elapsed_s // 60) > self._cleared_minute:
             self._cleared_minute = int(elapsed_s // 60)
             fresh.clear()
-        order = self.plots if len(self.frames["first_minute"]) % 2 else self.plots[::-1]
+        self._count += 1
+        order = self.plots if self._count % 2 else self.plots[::-1]  # neither always gets the events queued first
         durations = {id(plot): timed_frame(self.app, plot) for plot in order}
         if elapsed_s < 60.0:
             self.frames["first_minute"].append(durations[id(long_running)])
