@@ -1,5 +1,6 @@
-"""rqt_plot and rqt_console are drop-ins (scripts/lib/dropins.py): used where the system has none, ignored where
-ros-noetic-rqt-plot / ros-noetic-rqt-console are installed, and resolved to those on Ubuntu."""
+"""The rqt packages (rqt_gui, rqt_graph, rqt_logger_level, rqt_plot, rqt_console) are drop-ins
+(scripts/lib/dropins.py): used where the system has none, ignored where ros-noetic-rqt-* are installed, and resolved
+to those on Ubuntu."""
 import os
 import shutil
 import subprocess
@@ -13,7 +14,7 @@ sys.path.insert(0, os.path.join(REPO, "scripts", "lib"))
 from dropins import find_dropins  # noqa: E402
 from resolve_deps import load_table  # noqa: E402
 
-TOOLS = ("rqt_plot", "rqt_console")
+TOOLS = ("rqt_gui", "rqt_graph", "rqt_logger_level", "rqt_plot", "rqt_console")
 
 
 @pytest.mark.parametrize("tool", TOOLS)
@@ -39,3 +40,18 @@ def test_system_tool_makes_the_dropin_stand_aside(tmp_path, tool):
     result = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
     assert result.returncode == 0 and result.stdout == ""
     assert (src / tool / "CATKIN_IGNORE").is_file()
+
+
+@pytest.mark.parametrize("platform", ["debian", "ubuntu"])
+def test_the_tutorials_bring_the_real_rqt_where_the_platform_has_it(platform):
+    """beginner_tutorials depends on the five: Ubuntu installs the real ones, Debian what the drop-ins need."""
+    resolver = os.path.join(REPO, "scripts", "lib", "resolve_deps.py")
+    packages = subprocess.run(
+        [sys.executable, resolver, "--platform", platform], stdout=subprocess.PIPE, universal_newlines=True
+    ).stdout.split()
+    real = {"ros-noetic-" + tool.replace("_", "-") for tool in TOOLS}
+    if platform == "ubuntu":
+        assert real <= set(packages)
+    else:
+        assert not real & set(packages)
+        assert {"python3-python-qt-binding", "graphviz", "python3-pydot"} <= set(packages)

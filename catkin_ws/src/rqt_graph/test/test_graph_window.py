@@ -14,10 +14,10 @@ import time
 import unittest
 
 import numpy as np
-import rosgraph
 import rospy
 import rostest
 from workspace_testing.processes import stop_group
+from workspace_testing.tool_checks import tool_up_failures
 from workspace_testing.tool_window import ToolOnScreen, matches, save_png
 
 from rqt_graph.graph_model import Edge, GraphOptions, build_graph, node_id
@@ -25,12 +25,6 @@ from rqt_graph.ros_query import query_system_state
 
 TITLE = "rqt_graph__RosGraph - rqt"
 TELEOP_EDGE = Edge(node_id("/teleop_turtle"), node_id("/turtlesim"), "/turtle1/cmd_vel")
-
-
-def window_titles(display: str) -> str:
-    return subprocess.run(
-        ["xwininfo", "-root", "-tree", "-display", display], stdout=subprocess.PIPE, universal_newlines=True
-    ).stdout
 
 
 def cropped(image: np.ndarray) -> np.ndarray:
@@ -66,16 +60,9 @@ class GraphWindow(unittest.TestCase):
             log_path = os.path.join(tempfile.gettempdir(), "rqt_graph_window.log")
             with ToolOnScreen(["rosrun", "rqt_graph", "rqt_graph"], log_path) as tool:
                 node = "/rqt_gui_py_node_%d" % tool.process.pid
-                master = rosgraph.Master(rospy.get_name())
 
                 def failures_of(image: np.ndarray):
-                    failures = []
-                    try:
-                        master.lookupNode(node)
-                    except rosgraph.MasterError:
-                        failures.append("%s not registered" % node)
-                    if '"%s"' % TITLE not in window_titles(tool.display):
-                        failures.append("no window titled %r" % TITLE)
+                    failures = tool_up_failures(tool.display, TITLE, node, rospy.get_name())
                     white = matches(image, (255, 255, 255), 0)
                     rows, columns = np.nonzero(white.sum(axis=1) > 300)[0], np.nonzero(white.sum(axis=0) > 200)[0]
                     if len(rows) < 200 or len(columns) < 300:

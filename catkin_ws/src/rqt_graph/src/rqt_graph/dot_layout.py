@@ -7,21 +7,38 @@ from __future__ import annotations
 
 import shlex
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Tuple
+from typing import Callable, Dict, List, Optional, Tuple
 
 import pydot
 
 from rqt_graph.graph_model import Graph, is_topic, namespace_of, node_id, topic_id, vertex_name
 
 POINTS_PER_INCH = 72.0
+FONT_SIZE = 12.0  # points; the view draws its text at this pixel size, 1 point to 1 scene unit
+# Room around a label: an ellipse needs about sqrt(2) times the text's width, a box a margin
+ELLIPSE_WIDTH, ELLIPSE_PAD, BOX_PAD = 1.3, 16.0, 14.0
+
+TextWidth = Callable[[str], float]  # a label's width in points, as the view will draw it
 
 
 def _quoted(text: str) -> str:
     return '"%s"' % text.replace("\\", "\\\\").replace('"', '\\"')
 
 
-def to_pydot(graph: Graph, group_namespaces: bool = True) -> pydot.Dot:
-    dot = pydot.Dot("rosgraph", graph_type="digraph", rankdir="LR")
+def _min_width(text_width: Optional[TextWidth], label: str, ellipse: bool) -> dict:
+    """A node at least as wide as its label drawn by the view (graphviz measures with fonts of its own)."""
+    if text_width is None:
+        return {}
+    points = text_width(label) * ELLIPSE_WIDTH + ELLIPSE_PAD if ellipse else text_width(label) + BOX_PAD
+    return {"width": "%.3f" % (points / POINTS_PER_INCH)}
+
+
+def to_pydot(graph: Graph, group_namespaces: bool = True, text_width: Optional[TextWidth] = None) -> pydot.Dot:
+    """``text_width``: how wide the view draws a label; nodes are made at least that wide (without it graphviz's
+    own font metrics decide, as for the DOT and SVG files)."""
+    dot = pydot.Dot("rosgraph", graph_type="digraph", rankdir="LR", fontsize=FONT_SIZE)
+    dot.set_node_defaults(fontsize=FONT_SIZE)
+    dot.set_edge_defaults(fontsize=FONT_SIZE)
     clusters: Dict[str, pydot.Cluster] = {}
 
     def container(name: str):
@@ -37,9 +54,11 @@ def to_pydot(graph: Graph, group_namespaces: bool = True) -> pydot.Dot:
 
     for name in sorted(graph.nodes):
         style = {} if graph.nodes[name] else {"color": "red", "tooltip": _quoted(name + " (DEAD)")}
+        style.update(_min_width(text_width, name, ellipse=True))
         container(name).add_node(pydot.Node(_quoted(node_id(name)), label=_quoted(name), shape="ellipse", **style))
     for name in sorted(graph.topics):
-        container(name).add_node(pydot.Node(_quoted(topic_id(name)), label=_quoted(name), shape="box"))
+        size = _min_width(text_width, name, ellipse=False)
+        container(name).add_node(pydot.Node(_quoted(topic_id(name)), label=_quoted(name), shape="box", **size))
     for edge in graph.edges:
         attributes = {"label": _quoted(edge.label)} if edge.label else {}
         dot.add_edge(pydot.Edge(_quoted(edge.start), _quoted(edge.end), **attributes))
@@ -122,5 +141,5 @@ def run_dot(dot: pydot.Dot, output_format: str) -> bytes:
     return dot.create(prog="dot", format=output_format)
 
 
-def lay_out(graph: Graph, group_namespaces: bool = True) -> Layout:
-    return parse_plain(run_dot(to_pydot(graph, group_namespaces), "plain").decode("utf-8"))
+def lay_out(graph: Graph, group_namespaces: bool = True, text_width: Optional[TextWidth] = None) -> Layout:
+    return parse_plain(run_dot(to_pydot(graph, group_namespaces, text_width), "plain").decode("utf-8"))

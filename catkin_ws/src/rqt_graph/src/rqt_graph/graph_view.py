@@ -1,12 +1,12 @@
 """Draws a Layout into a QGraphicsScene: ellipses for nodes (red when dead), boxes for topics, arrows for edges,
-namespace boxes; hovering a node or topic highlights its connections (incoming blue, outgoing red)."""
+namespace boxes; hovering a node or topic highlights it (orange) and its connections (incoming blue, outgoing red)."""
 from __future__ import annotations
 
 import math
 from typing import Dict, List
 
 from python_qt_binding.QtCore import QPointF, QRectF, Qt
-from python_qt_binding.QtGui import QBrush, QColor, QPainter, QPainterPath, QPen, QPolygonF
+from python_qt_binding.QtGui import QBrush, QColor, QFont, QFontMetricsF, QPainter, QPainterPath, QPen, QPolygonF
 from python_qt_binding.QtWidgets import (
     QGraphicsEllipseItem,
     QGraphicsItemGroup,
@@ -17,7 +17,7 @@ from python_qt_binding.QtWidgets import (
     QGraphicsView,
 )
 
-from rqt_graph.dot_layout import Layout, PlacedEdge, PlacedVertex
+from rqt_graph.dot_layout import FONT_SIZE, Layout, PlacedEdge, PlacedVertex
 from rqt_graph.graph_model import namespace_of
 
 NORMAL = QColor("black")
@@ -27,6 +27,24 @@ OUTGOING = QColor(220, 0, 0)
 NAMESPACE = QColor(150, 150, 150)
 ARROW = 9.0  # arrowhead length, points
 CLUSTER_MARGIN = 10.0
+HOVERED = QColor(255, 140, 0)  # not red: red means dead
+
+
+def label_font() -> QFont:
+    font = QFont()
+    font.setPixelSize(int(FONT_SIZE))
+    return font
+
+
+def text_width(label: str) -> float:
+    """How wide the view draws a label (for dot_layout, so that the text fits its node)."""
+    return QFontMetricsF(label_font()).horizontalAdvance(label)
+
+
+def _text(label: str) -> QGraphicsSimpleTextItem:
+    item = QGraphicsSimpleTextItem(label)
+    item.setFont(label_font())
+    return item
 
 
 class EdgeItem(QGraphicsItemGroup):
@@ -56,7 +74,7 @@ class EdgeItem(QGraphicsItemGroup):
         self.addToGroup(self._head)
         self._label = None
         if edge.label and edge.label_pos:
-            self._label = QGraphicsSimpleTextItem(edge.label)
+            self._label = _text(edge.label)
             rect = self._label.boundingRect()
             self._label.setPos(edge.label_pos[0] - rect.width() / 2, edge.label_pos[1] - rect.height() / 2)
             self.addToGroup(self._label)
@@ -84,7 +102,7 @@ class VertexItem(QGraphicsItemGroup):
         rect = QRectF(vertex.x - vertex.width / 2, vertex.y - vertex.height / 2, vertex.width, vertex.height)
         self._shape = QGraphicsRectItem(rect) if vertex.is_topic else QGraphicsEllipseItem(rect)
         self._shape.setBrush(QBrush(Qt.white))
-        self._text = QGraphicsSimpleTextItem(vertex.label)
+        self._text = _text(vertex.label)
         text_rect = self._text.boundingRect()
         self._text.setPos(vertex.x - text_rect.width() / 2, vertex.y - text_rect.height() / 2)
         self.addToGroup(self._shape)
@@ -112,7 +130,7 @@ class VertexItem(QGraphicsItemGroup):
         for edges, colour in ((self.incoming, INCOMING), (self.outgoing, OUTGOING)):
             for edge in edges:
                 edge.set_colour(colour if on else NORMAL)
-        self.set_colour(OUTGOING if on else NORMAL)
+        self.set_colour(HOVERED if on else NORMAL)
 
 
 def draw(
@@ -151,7 +169,7 @@ def _draw_namespaces(scene: QGraphicsScene, layout: Layout) -> None:
         box = rect.adjusted(-CLUSTER_MARGIN, -CLUSTER_MARGIN - 14, CLUSTER_MARGIN, CLUSTER_MARGIN)
         frame = scene.addRect(box, QPen(NAMESPACE, 1.0, Qt.DashLine))
         frame.setZValue(0)
-        label = scene.addSimpleText(namespace)
+        label = scene.addSimpleText(namespace, label_font())
         label.setBrush(QBrush(NAMESPACE))
         label.setPos(box.left() + 4, box.top() + 2)
 

@@ -25,7 +25,7 @@ from python_qt_binding.QtWidgets import (
 
 from rqt_graph.dot_layout import lay_out, run_dot, to_dot, to_pydot
 from rqt_graph.graph_model import MODES, Graph, GraphOptions, SystemState, build_graph
-from rqt_graph.graph_view import GraphView, draw
+from rqt_graph.graph_view import GraphView, draw, text_width
 
 
 class StateFetcher(QObject):
@@ -195,7 +195,7 @@ class GraphWidget(QWidget):
             return
         self.graph = build_graph(self.state, self.options())
         try:
-            layout = lay_out(self.graph, self.group_box.isChecked())
+            layout = lay_out(self.graph, self.group_box.isChecked(), text_width)
         except Exception as error:  # graphviz missing or failing: say so instead of drawing
             self.status.setText("graphviz dot failed: %s" % error)
             return

@@ -42,3 +42,11 @@ def test_dot_text_marks_dead_nodes_and_groups_namespaces():
     assert '"n_/ghost" [color=red' in text
     assert "subgraph cluster_ns0" in text and 'label="/turtle1"' in text
     assert "cluster" not in to_dot(graph, group_namespaces=False)
+
+
+def test_nodes_are_at_least_as_wide_as_the_view_draws_their_labels():
+    graph = build_graph(turtlesim_session(), GraphOptions(mode=NODES_TOPICS_ACTIVE))
+    wide = lambda label: 30.0 * len(label)  # noqa: E731 (a font far wider than graphviz's)
+    layout = lay_out(graph, text_width=wide)
+    for placed in layout.vertices.values():
+        assert placed.width >= wide(placed.label), placed
