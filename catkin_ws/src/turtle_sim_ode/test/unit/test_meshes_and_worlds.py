@@ -190,7 +190,9 @@ BOX = box_triangles((0.0, 0.0, 0.0), (1.0, 2.0, 3.0))
         ("box.obj", obj(BOX).encode(), (0, 0, 0), (1, 2, 3)),
         ("box.dae", collada(BOX).encode(), (0.5, 0, 0), (1.5, 2, 3)),  # its node's <translate>
         ("box_mm.dae", collada(BOX, meter=0.001).encode(), (0.0005, 0, 0), (0.0015, 0.002, 0.003)),
-        ("box_y_up.dae", collada(BOX, up="Y_UP").encode(), (0.5, -3, 0), (1.5, 0, 2)),
+        # <up_axis> is not applied, as gazebo/common/ColladaLoader.cc, ColladaLoader::Load reads only <unit meter>
+        # from <asset> (this test expected the file turned Z up before issue #22: Gazebo does not turn it).
+        ("box_y_up.dae", collada(BOX, up="Y_UP").encode(), (0.5, 0, 0), (1.5, 2, 3)),
     ],
 )
 def test_mesh_formats_are_read(name, data, low, high):

@@ -27,6 +27,7 @@ from turtlesim.world import DEFAULT_BACKGROUND, UPDATE_PERIOD, WORLD_SIZE, Rgb, 
 
 BACKGROUND_PARAMS = ("~background_r", "~background_g", "~background_b")
 WALL_WARNING_PERIOD = 1.0  # s between two wall warnings of the same turtle
+WARNING_PERIOD = 1.0  # s between two warnings of one kind: ignored commands, failed updates
 MAX_LAG = 0.25  # s: a loop further behind than this skips the missed updates instead of catching up
 
 
@@ -97,10 +98,14 @@ class TurtlesimNode:
             self._thread.join(2.0)
 
     def _loop(self) -> None:
-        """One world update every UPDATE_PERIOD of wall time, on a fixed schedule (so 1 s holds 62.5 updates)."""
+        """One world update every UPDATE_PERIOD of wall time, on a fixed schedule (so 1 s holds 62.5 updates); an
+        update that fails is logged (throttled) and the next one comes as usual."""
         next_update = time.monotonic()
         while not self._stop.is_set() and not rospy.is_shutdown():
-            self.step(time.monotonic())
+            try:
+                self.step(time.monotonic())
+            except Exception as error:  # never ends the loop: /pose must go on
+                rospy.logerr_throttle(WARNING_PERIOD, "turtlesim update failed: %s: %s" % (type(error).__name__, error))
             next_update += UPDATE_PERIOD
             delay = next_update - time.monotonic()
             if delay < -MAX_LAG:
@@ -111,6 +116,8 @@ class TurtlesimNode:
     def step(self, now: float) -> None:
         with self.lock:
             hits = self.world.update(now)
+            for fault in self.world.take_faults():
+                rospy.logwarn_throttle(WARNING_PERIOD, fault)
             for name, turtle in self.world.turtles.items():
                 handles = self.handles[name]
                 handles.pose_pub.publish(Pose(turtle.x, turtle.y, turtle.theta, turtle.linear_velocity, turtle.ang))
@@ -124,7 +131,11 @@ class TurtlesimNode:
     # --- world services ------------------------------------------------------------------------------------------
     def _spawn(self, name: str, x: float, y: float, theta: float) -> str:
         name = self.world.spawn(name, x, y, theta)
-        self.handles[name] = TurtleHandles(self, name)
+        try:
+            self.handles[name] = TurtleHandles(self, name)
+        except (ValueError, rospy.ROSException) as error:  # all or nothing: the turtle goes again
+            self.world.kill(name)
+            raise WorldError("Cannot spawn turtle [%s]: %s" % (name, error)) from None
         rospy.loginfo("Spawning turtle [%s] at x=[%f], y=[%f], theta=[%f]", name, x, y, theta)
         return name
 
@@ -179,8 +190,12 @@ class TurtlesimNode:
     def on_cmd_vel(self, msg: Twist, name: str) -> None:
         with self.lock:
             turtle = self.world.turtles.get(name)
-            if turtle is not None:
+            if turtle is None:
+                return
+            try:
                 turtle.command(msg.linear.x, msg.linear.y, msg.angular.z, time.monotonic())
+            except WorldError as error:
+                rospy.logwarn_throttle(WARNING_PERIOD, "%s: ignored" % error)
 
     def _on_turtle(self, name: str, action) -> None:
         """Run action() on the world under the lock; a turtle killed meanwhile fails the call with a message."""

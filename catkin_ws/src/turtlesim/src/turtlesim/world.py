@@ -7,6 +7,7 @@ Coordinates: metres, x to the right and y up, origin at the canvas' bottom-left 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
 
@@ -22,13 +23,30 @@ DEFAULT_PEN: Rgb = (179, 184, 255)
 DEFAULT_PEN_WIDTH = 3
 
 
+# A legal ROS graph name (ros::names::validate, rosgraph.names.is_legal_name): a letter (after an optional '/' or
+# '~'), then letters, digits, '_' and single '/'s, not ending in '/'. Turtle names prefix topic and service names.
+LEGAL_NAME = re.compile(r"[~/]?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z0-9_]+)*")
+
+
 class WorldError(Exception):
-    """A request the world refuses (duplicate or unknown turtle name); the message says why."""
+    """A request the world refuses (duplicate or unknown turtle name, a bad name or number); the message says why."""
+
+
+def finite(what: str, **values: float) -> None:
+    """WorldError naming the first value that is not a finite number."""
+    for name, value in values.items():
+        if not math.isfinite(value):
+            raise WorldError("%s: %s [%r] is not a finite number" % (what, name, value))
 
 
 def wrap_angle(theta: float) -> float:
-    """theta wrapped to [-pi, pi)."""
-    return theta - 2.0 * math.pi * math.floor((theta + math.pi) / (2.0 * math.pi))
+    """theta wrapped to [-pi, pi), as the original wraps it (theta - 2 pi floor((theta + pi) / 2 pi)); for angles so
+    large that this loses every digit (1e300 rad), with the exact remainder instead."""
+    wrapped = theta - 2.0 * math.pi * math.floor((theta + math.pi) / (2.0 * math.pi))
+    if -math.pi <= wrapped < math.pi:
+        return wrapped
+    remainder = math.fmod(theta + math.pi, 2.0 * math.pi)
+    return (remainder + 2.0 * math.pi if remainder < 0.0 else remainder) - math.pi
 
 
 @dataclass
@@ -69,7 +87,9 @@ class Turtle:
         return math.hypot(self.lin_x, self.lin_y)
 
     def command(self, lin_x: float, lin_y: float, ang: float, now: float) -> None:
-        """A cmd_vel received at wall time `now`: obeyed until COMMAND_TIMEOUT has passed."""
+        """A cmd_vel received at wall time `now`: obeyed until COMMAND_TIMEOUT has passed; WorldError (and no
+        change) if a component is not finite."""
+        finite("cmd_vel of turtle [%s]" % self.name, linear_x=lin_x, linear_y=lin_y, angular_z=ang)
         self.lin_x, self.lin_y, self.ang = lin_x, lin_y, ang
         self.last_command = now
 
@@ -86,6 +106,7 @@ class World:
         self.canvas = Canvas(CANVAS_PIXELS, CANVAS_PIXELS, background)
         self.turtles: Dict[str, Turtle] = {}
         self._id_counter = 0
+        self.faults: List[str] = []  # turtles whose update failed, since take_faults
 
     # --- turtles -------------------------------------------------------------------------------------------------
     def spawn(self, name: str, x: float, y: float, theta: float) -> str:
@@ -98,6 +119,9 @@ class World:
                     break
         elif name in self.turtles:
             raise WorldError("A turtle named [%s] already exists" % name)
+        elif not LEGAL_NAME.fullmatch(name):
+            raise WorldError("Cannot spawn turtle [%s]: not a legal ROS graph name" % name)
+        finite("Cannot spawn turtle [%s]" % name, x=x, y=y, theta=theta)
         self.turtles[name] = Turtle(name, float(x), float(y), float(theta))
         return name
 
@@ -133,20 +157,37 @@ class World:
         turtle.pen = Pen(tuple(colour), width if width != 0 else DEFAULT_PEN_WIDTH, True)
 
     def teleport_absolute(self, name: str, x: float, y: float, theta: float) -> None:
-        self.turtle(name).teleports.append(("absolute", x, y, theta))
+        turtle = self.turtle(name)
+        finite("teleport_absolute of turtle [%s]" % name, x=x, y=y, theta=theta)
+        turtle.teleports.append(("absolute", x, y, theta))
 
     def teleport_relative(self, name: str, linear: float, angular: float) -> None:
-        self.turtle(name).teleports.append(("relative", linear, angular, 0.0))
+        turtle = self.turtle(name)
+        finite("teleport_relative of turtle [%s]" % name, linear=linear, angular=angular)
+        turtle.teleports.append(("relative", linear, angular, 0.0))
 
     # --- time ----------------------------------------------------------------------------------------------------
     def update(self, now: float, dt: float = UPDATE_PERIOD) -> List[WallHit]:
-        """Move every turtle by one update of `dt` seconds at wall time `now`; return the wall hits."""
+        """Move every turtle by one update of `dt` seconds at wall time `now`; return the wall hits. A turtle whose
+        update fails (nothing known does) is stopped where it stood and named in ``faults``; the others move on."""
         hits = []
         for turtle in self.turtles.values():
-            hit = self._update_turtle(turtle, now, dt)
+            before = (turtle.x, turtle.y, turtle.theta)
+            try:
+                hit = self._update_turtle(turtle, now, dt)
+            except Exception as error:
+                turtle.x, turtle.y, turtle.theta = before
+                turtle.lin_x = turtle.lin_y = turtle.ang = 0.0
+                turtle.teleports.clear()
+                self.faults.append("turtle [%s] not moved: %s: %s" % (turtle.name, type(error).__name__, error))
+                continue
             if hit is not None:
                 hits.append(hit)
         return hits
+
+    def take_faults(self) -> List[str]:
+        found, self.faults = self.faults, []
+        return found
 
     def _update_turtle(self, turtle: Turtle, now: float, dt: float) -> Optional[WallHit]:
         for kind, a, b, c in turtle.teleports:
@@ -157,6 +198,9 @@ class World:
                 turtle.y += math.sin(turtle.theta) * a
             else:
                 turtle.x, turtle.y, turtle.theta = a, b, c
+            if not (math.isfinite(turtle.x) and math.isfinite(turtle.y)):  # relative jumps summed past 1e308 m
+                turtle.x = min(max(turtle.x, 0.0), WORLD_SIZE) if not math.isnan(turtle.x) else old[0]
+                turtle.y = min(max(turtle.y, 0.0), WORLD_SIZE) if not math.isnan(turtle.y) else old[1]
             self._draw(turtle, old)
         turtle.teleports.clear()
 

@@ -196,3 +196,85 @@ def test_teleport_relative_turns_then_moves():
         pytest.approx(CENTRE + 1.0),
         pytest.approx(math.pi / 2),
     )
+
+
+# --- issue #26: numbers and names the world cannot use ---------------------------------------------------------------
+NON_FINITE = [math.nan, math.inf, -math.inf]
+
+
+@pytest.mark.parametrize("bad", NON_FINITE)
+@pytest.mark.parametrize("field", ["x", "y", "theta"])
+def test_non_finite_spawn_and_teleport_values_are_refused_naming_them(bad, field):
+    world = world_with_turtle1()
+    values = {"x": 1.0, "y": 1.0, "theta": 0.0}
+    values[field] = bad
+    with pytest.raises(WorldError, match="%s \\[%r\\] is not a finite number" % (field, bad)):
+        world.spawn("t2", **values)
+    assert "t2" not in world.turtles
+    with pytest.raises(WorldError, match="not a finite number"):
+        world.teleport_absolute("turtle1", **values)
+    with pytest.raises(WorldError, match="not a finite number"):
+        world.teleport_relative("turtle1", bad if field == "x" else 1.0, bad if field != "x" else 0.0)
+    world.update(0.0)
+    turtle = world.turtles["turtle1"]
+    assert (turtle.x, turtle.y, turtle.theta) == (CENTRE, CENTRE, 0.0)
+
+
+@pytest.mark.parametrize("component", range(3))
+def test_a_non_finite_command_is_refused_and_the_last_one_kept(component):
+    world = world_with_turtle1()
+    turtle = world.turtles["turtle1"]
+    turtle.command(1.0, 0.0, 0.5, 0.0)
+    command = [1.0, 0.0, 0.5]
+    command[component] = math.nan
+    with pytest.raises(WorldError, match="cmd_vel of turtle \\[turtle1\\]"):
+        turtle.command(*command, now=0.1)
+    assert (turtle.lin_x, turtle.lin_y, turtle.ang, turtle.last_command) == (1.0, 0.0, 0.5, 0.0)
+
+
+@pytest.mark.parametrize("name", ["a b", "1abc", "a-b", "a//b", "a/", "é", "a\nb", "/", "~", "_a"])
+def test_names_that_are_not_legal_ros_graph_names_are_refused(name):
+    """As ros_tutorials' turtlesim, whose spawn fails where ros::NodeHandle(name) throws an InvalidNameException."""
+    world = world_with_turtle1()
+    with pytest.raises(WorldError, match="not a legal ROS graph name"):
+        world.spawn(name, 1.0, 1.0, 0.0)
+    assert list(world.turtles) == ["turtle1"]
+
+
+@pytest.mark.parametrize("name", ["a", "turtle2", "a/b", "/global", "~private", "A_1/b2"])
+def test_legal_ros_graph_names_are_spawned(name):
+    world = world_with_turtle1()
+    assert world.spawn(name, 1.0, 1.0, 0.0) == name
+
+
+def test_the_update_survives_an_exception_in_one_turtle(monkeypatch):
+    world = world_with_turtle1()
+    world.spawn("broken", 2.0, 2.0, 0.0)
+    world.turtles["turtle1"].command(1.0, 0.0, 0.0, 0.0)
+    original = World._update_turtle
+
+    def failing(self, turtle, now, dt):
+        if turtle.name == "broken":
+            raise OverflowError("cannot convert float infinity to integer")
+        return original(self, turtle, now, dt)
+
+    monkeypatch.setattr(World, "_update_turtle", failing)
+    world.update(0.0)
+    world.update(0.016)
+    assert world.turtles["turtle1"].x == pytest.approx(CENTRE + 2 * UPDATE_PERIOD)
+    assert (world.turtles["broken"].x, world.turtles["broken"].y) == (2.0, 2.0)
+    faults = world.take_faults()
+    assert len(faults) == 2 and "turtle [broken]" in faults[0] and "OverflowError" in faults[0]
+    assert world.take_faults() == []
+
+
+@pytest.mark.parametrize("far", [1e300, 1.7e308, -1.7e308])
+def test_teleports_to_absurd_but_finite_places_end_on_the_wall(far):
+    world = world_with_turtle1()
+    world.teleport_absolute("turtle1", far, far, 0.0)
+    world.teleport_relative("turtle1", far, 0.0)
+    world.teleport_relative("turtle1", far, 0.0)
+    world.update(0.0)
+    turtle = world.turtles["turtle1"]
+    assert 0.0 <= turtle.x <= WORLD_SIZE and 0.0 <= turtle.y <= WORLD_SIZE and math.isfinite(turtle.theta)
+    assert world.take_faults() == []

@@ -3,7 +3,8 @@
 PyPI's xacro (the upstream project's ROS 2 line) resolves `$(find pkg)` through ament_index, which knows no
 catkin package. Noetic's xacro resolves it with rospack: the package's directory on ROS_PACKAGE_PATH. The
 library looks the resolver up as `xacro.substitution_args._eval_find` (for `$(find pkg)`) and in
-`_eval_dict["find"]` (for `$(eval find('pkg'))`); `use_ros_package_path` replaces both.
+`_eval_dict["find"]` (for `$(eval find('pkg'))`); `use_ros_package_path` replaces both. Expressions are
+evaluated in a sandbox (sandbox.py).
 """
 from __future__ import annotations
 
@@ -13,6 +14,8 @@ from types import ModuleType
 from typing import Callable, List, Optional
 
 import rospkg
+
+from xacro_dropin.sandbox import sandbox_xacro
 
 PYPI_DIR_ENV = "XACRO_PYPI_DIR"
 DEFAULT_PYPI_DIR = "/usr/local/lib/ros_dropins/python"
@@ -79,6 +82,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         )
         return 1
     use_ros_package_path(substitution_args, ros_package_finder(rospkg.RosPack()))
+    sandbox_xacro(xacro, substitution_args)  # expressions in the files never run commands (see sandbox.py)
     # xacro 2.1.1 names xml.parsers.expat in an except clause without importing it: an input file that cannot be
     # opened would end in an AttributeError instead of its error message and exit code 2.
     import xml.parsers.expat  # noqa: F401

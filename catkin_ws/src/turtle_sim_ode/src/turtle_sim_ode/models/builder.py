@@ -443,7 +443,7 @@ def _create_geom(space: ode.SpaceBase, geometry: Geometry) -> ode.GeomObject:
     if isinstance(geometry, Mesh):
         if geometry.vertices is None or geometry.faces is None:
             raise ModelError(f"mesh '{geometry.uri}' is not loaded (models.meshes.load_meshes reads it)")
-        return MeshGeom(space, geometry.vertices, geometry.faces)  # type: ignore[return-value]
+        return MeshGeom(space, geometry.vertices, geometry.faces, geometry.prepared)  # type: ignore[arg-type,return-value]
     raise ModelError(f"unsupported geometry {geometry!r}")
 
 

@@ -1,10 +1,13 @@
 """A world's <include>s resolved as Gazebo resolves them: ``model://NAME`` is the folder NAME on the model path
 (GAZEBO_MODEL_PATH and the gazebo_model_path exports of the ROS packages), whose model.config names the model's SDF
 file (the one of the highest <sdf version> this simulator reads); the <include>'s <name>, <pose> and <static>
-override the model's own. Files are read through models.resources (only under the package and model paths)."""
+override the model's own. Files are read through models.resources (only under the package and model paths).
+
+An <include> inside an included model is not supported (sdf refuses it), but include chains are followed first, to a
+depth limit, so that a self-include or a cycle is refused as such and supporting nested includes later cannot loop."""
 from __future__ import annotations
 
-from typing import List, Optional, Set, Tuple
+from typing import List, Optional, Sequence, Set, Tuple
 
 from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.sdf import NEWEST_VERSION, Include, World, WorldModel, parse_included_model
@@ -38,6 +41,38 @@ def model_file(paths: ResourcePaths, name: str) -> Tuple[str, str]:
     return folder, text.decode("utf-8", "replace")
 
 
+# How deep includes may nest, and how many model files one world's chains may visit: far beyond Gazebo worlds' use.
+MAX_INCLUDE_DEPTH = 8
+MAX_INCLUDED_FILES = 64
+
+
+def _nested_model_includes(text: str, name: str) -> List[str]:
+    """The model:// names a model file's own <include>s name."""
+    root = parse_xml(text, f"model://{name}")
+    uris = [(include.findtext("uri") or "").strip() for include in root.iter("include")]
+    return [uri[len("model://") :].strip("/") for uri in uris if uri.startswith("model://")]
+
+
+def check_include_chain(
+    paths: ResourcePaths, name: str, chain: Sequence[str] = (), visited: Optional[Set[str]] = None
+) -> None:
+    """Follow model ``name``'s nested model:// includes; ModelError naming the chain at a cycle (a model that
+    includes itself, directly or not), beyond MAX_INCLUDE_DEPTH, or beyond MAX_INCLUDED_FILES files."""
+    chain = list(chain) + [name]
+    shown = " -> ".join(f"model://{entry}" for entry in chain)
+    if name in chain[:-1]:
+        raise ModelError(f"include cycle: {shown}")
+    if len(chain) > MAX_INCLUDE_DEPTH:
+        raise ModelError(f"includes nested deeper than {MAX_INCLUDE_DEPTH}: {shown}")
+    visited = set() if visited is None else visited
+    visited.add(" ".join(chain))
+    if len(visited) > MAX_INCLUDED_FILES:
+        raise ModelError(f"includes reach more than {MAX_INCLUDED_FILES} model files: {shown}")
+    _, text = model_file(paths, name)
+    for nested in _nested_model_includes(text, name):
+        check_include_chain(paths, nested, chain, visited)
+
+
 def resolve_includes(world: World, paths: ResourcePaths) -> Tuple[List[WorldModel], List[Include]]:
     """The world's model:// includes as models to spawn, and the includes left unresolved (other URI schemes);
     ModelError naming the include where one cannot be read or parsed, or where two models get one name."""
@@ -50,6 +85,7 @@ def resolve_includes(world: World, paths: ResourcePaths) -> Tuple[List[WorldMode
             continue
         name = include.uri[len("model://") :].strip("/")
         try:
+            check_include_chain(paths, name)
             folder, text = model_file(paths, name)
             model, own_pose = parse_included_model(text, include.name, include.static)
         except ModelError as error:

@@ -87,6 +87,8 @@ class Mesh:
     scale: Vec3 = (1.0, 1.0, 1.0)
     vertices: Optional[Tuple[Vec3, ...]] = field(default=None, compare=False, repr=False)
     faces: Optional[Tuple[Tuple[int, int, int], ...]] = field(default=None, compare=False, repr=False)
+    # ODE's trimesh data of them (physics.trimesh.TriMeshData), built with them outside the world lock.
+    prepared: Optional[object] = field(default=None, compare=False, repr=False)
 
 
 Geometry = Union[Box, Cylinder, Sphere, Mesh]

@@ -100,28 +100,60 @@ def available() -> bool:
     return _ODE is not None
 
 
-class MeshGeom:
-    """A body-less ODE trimesh in ``space`` (vertices and faces as ode.TriMeshData.build takes them). Destroy it
-    with ``destroy`` (not space.remove, which takes PyODE geoms only)."""
+class TriMeshData:
+    """ODE's trimesh data (its collision tree) of vertices and faces, built apart from any world or space: the spawn
+    service builds it before it takes the world lock (0.3 s for 190,000 triangles), so that only the geom is made
+    under it. The first MeshGeom made of it takes it over; data not taken is freed with this object."""
 
-    def __init__(
-        self, space: Optional[ode.SpaceBase], vertices: Sequence[Sequence[float]], faces: Sequence[Sequence[int]]
-    ):
+    def __init__(self, vertices: Sequence[Sequence[float]], faces: Sequence[Sequence[int]]):
         if _ODE is None:
             raise RuntimeError("libode cannot be loaded through ctypes: meshes are not available")
-        # ODE keeps pointers to these arrays: they live as long as the geom.
-        self._vertices = numpy.ascontiguousarray(vertices, dtype=numpy.float64).reshape(-1, 3)
-        self._faces = numpy.ascontiguousarray(faces, dtype=numpy.uint32).reshape(-1, 3)
-        self._data = _ODE.dGeomTriMeshDataCreate()
+        # ODE keeps pointers to these arrays: they live as long as the data.
+        self.vertices = numpy.ascontiguousarray(vertices, dtype=numpy.float64).reshape(-1, 3)
+        self.faces = numpy.ascontiguousarray(faces, dtype=numpy.uint32).reshape(-1, 3)
+        self._handle = _ODE.dGeomTriMeshDataCreate()
         _ODE.dGeomTriMeshDataBuildDouble(
-            self._data,
-            self._vertices.ctypes.data,
+            self._handle,
+            self.vertices.ctypes.data,
             3 * 8,
-            len(self._vertices),
-            self._faces.ctypes.data,
-            self._faces.size,
+            len(self.vertices),
+            self.faces.ctypes.data,
+            self.faces.size,
             3 * 4,
         )
+
+    def take(self) -> "TriMeshData":
+        """This data for a new geom the first time; a fresh copy of it after that (a geom frees what it takes)."""
+        if self._handle is None:
+            return TriMeshData(self.vertices, self.faces)
+        taken = TriMeshData.__new__(TriMeshData)
+        taken.vertices, taken.faces, taken._handle = self.vertices, self.faces, self._handle
+        self._handle = None
+        return taken
+
+    def release(self) -> None:
+        if self._handle is not None and _ODE is not None:
+            _ODE.dGeomTriMeshDataDestroy(self._handle)
+        self._handle = None
+
+    def __del__(self) -> None:
+        self.release()
+
+
+class MeshGeom:
+    """A body-less ODE trimesh in ``space`` (vertices and faces as ode.TriMeshData.build takes them, or ``prepared``
+    data of them). Destroy it with ``destroy`` (not space.remove, which takes PyODE geoms only)."""
+
+    def __init__(
+        self,
+        space: Optional[ode.SpaceBase],
+        vertices: Sequence[Sequence[float]],
+        faces: Sequence[Sequence[int]],
+        prepared: Optional[TriMeshData] = None,
+    ):
+        data = prepared.take() if prepared is not None else TriMeshData(vertices, faces)
+        self._vertices, self._faces = data.vertices, data.faces
+        self._data, data._handle = data._handle, None  # this geom frees it
         self._gid = _ODE.dCreateTriMesh(space._id() if space is not None else None, self._data, None, None, None)
         ode._geom_c2py_lut[self._gid] = self  # so that PyODE's space callbacks and getGeom hand over this object
 

@@ -18,6 +18,7 @@ from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEJ
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from std_srvs.srv import Empty, EmptyResponse
 
+from turtle_sim_ode.models.meshes import load_meshes, read_visual_meshes
 from turtle_sim_ode.models.sdf import model_format, parse_sdf_model
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import parse_urdf
@@ -140,10 +141,11 @@ class GazeboApi:
                     handler(request, response)
                 if reports:
                     response.success = True
-            except (WorldError, ModelError, ValueError) as error:
+            except Exception as error:  # every input is answered; what no check foresaw is named by its type
                 # Names in a request are the caller's: a long one is shortened wherever the answer shows it.
                 names = [value for value in request_strings(request) if len(value) > 80]
-                message = shorten_names_in("%s: %s" % (name, error), names)
+                text = error if isinstance(error, ValueError) else "%s: %s" % (type(error).__name__, error)
+                message = shorten_names_in("%s: %s" % (name, text), names)
                 rospy.logwarn("/gazebo/%s", message)
                 if reports:
                     response.success = False
@@ -193,7 +195,15 @@ class GazeboApi:
         robot = (parse_urdf if xml_format == "urdf" else parse_sdf_model)(request.model_xml)
         initial_pose = (xyz(request.initial_pose.position), quaternion_of(request.initial_pose))
         check_topic = TopicTypes(name, known_topic_types())
+        # Mesh files are read and checked before the world lock is taken: a large or bad one never holds up the
+        # clock (only the trimesh is built under the lock).
+        load_meshes(robot, self._sim.resources)
         with self._lock:
+            watched = self._sim.models_seen_by_cameras(robot)
+            known = self._sim.scene.known_files()
+        visual_files = read_visual_meshes(watched, self._sim.resources, known)
+        with self._lock:
+            self._sim.scene.add_files(visual_files)
             warnings = self._sim.spawn_model(name, robot, initial_pose, request.reference_frame)
             try:  # the model's ROS side, refused over the ray limit or for a topic (see SimulatorNode.add_interface)
                 self._on_spawn(name, request.robot_namespace, check_topic)
@@ -246,7 +256,7 @@ class GazeboApi:
         try:
             with self._lock:
                 self._apply_model_state(state)
-        except (WorldError, ValueError) as error:
+        except (WorldError, ValueError, ArithmeticError) as error:  # numbers too large for a step: a warning too
             logwarn_every(5.0, "set_model_state", "/gazebo/set_model_state: %s" % error)
 
     def _get_model_properties(self, request, response) -> None:
@@ -285,7 +295,7 @@ class GazeboApi:
         try:
             with self._lock:
                 self._apply_link_state(state)
-        except (WorldError, ValueError) as error:
+        except (WorldError, ValueError, ArithmeticError) as error:  # numbers too large for a step: a warning too
             logwarn_every(5.0, "set_link_state", "/gazebo/set_link_state: %s" % error)
 
     def _get_link_properties(self, request, response) -> None:

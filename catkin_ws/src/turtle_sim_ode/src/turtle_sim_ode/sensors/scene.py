@@ -5,8 +5,10 @@ result is what both ray casters take: rows of the ray kernel's primitive table a
 (sensors.ray_kernel).
 
 A model's visuals are prepared on a camera's first rendering of it and kept while the model exists (a deleted or
-respawned model is a new BuiltModel): a visual mesh is read then, through ``resources`` as collision meshes are. A
-visual mesh that cannot be read gives one warning naming it, and its link is drawn from its collisions."""
+respawned model is a new BuiltModel): a visual mesh is read then, through ``resources`` as collision meshes are, unless
+the spawn service read it ahead outside the world lock (``add_files``). Sensor work for one model never ends the world:
+whatever goes wrong while preparing or drawing a link's visuals (a mesh that cannot be read, a number no one
+foresaw) gives one warning naming the model, link and file, and that link is drawn from its collisions."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -17,9 +19,8 @@ import ode
 
 from turtle_sim_ode.models.builder import BuiltModel, pose_transform, quat_matrix
 from turtle_sim_ode.models.materials import DEFAULT_COLOR, RGB
-from turtle_sim_ode.models.meshes import Triangles, mesh_file, scaled_mesh
+from turtle_sim_ode.models.meshes import MeshFiles, mesh_file, scaled_mesh
 from turtle_sim_ode.models.resources import ResourcePaths
-from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import Mesh, Visual
 from turtle_sim_ode.physics.trimesh import MeshGeom
 from turtle_sim_ode.physics.world import PhysicsWorld
@@ -59,6 +60,16 @@ class _View:
     mesh_arrays: List[Tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     colours: Dict[ode.GeomObject, RGB] = field(default_factory=dict)
     hidden: Set[ode.GeomObject] = field(default_factory=set)
+    files: Set[str] = field(default_factory=set)  # the mesh files its visuals were drawn from
+
+    @classmethod
+    def of_collisions(cls, model: BuiltModel) -> "_View":
+        """Every link drawn from its collisions, in its colour."""
+        view = cls()
+        for link, geoms in model.geoms.items():
+            colour = model.robot.links[link].color
+            view.colours.update((geom, colour if colour is not None else DEFAULT_COLOR) for geom in geoms)
+        return view
 
     def set_links(self, links: Dict[str, List[Part]]) -> None:
         """The links drawn from their visuals, each with its parts."""
@@ -104,6 +115,16 @@ class Scene:
         self.resources = resources
         self._views: Dict[BuiltModel, _View] = {}
         self._warnings: List[str] = []
+        self._files: MeshFiles = {}  # visual mesh files read, by resolved path; those of live models are kept
+
+    def known_files(self) -> List[str]:
+        """The visual mesh files read already (resolved paths)."""
+        return list(self._files)
+
+    def add_files(self, files: MeshFiles) -> None:
+        """Visual mesh files read ahead (models.meshes.read_visual_meshes), so that no camera reads them while it
+        holds the world lock."""
+        self._files.update(files)
 
     def take_warnings(self) -> List[str]:
         """The warnings since the last call (a visual mesh that cannot be read: once per model)."""
@@ -112,11 +133,17 @@ class Scene:
 
     def _prepare(self, model: BuiltModel) -> _View:
         view = _View()
-        cache: Dict[str, Triangles] = {}
         drawn: Dict[str, List[Part]] = {}
         for link, geoms in model.geoms.items():
             description = model.robot.links[link]
-            parts = self._parts(model, link, description.visuals, cache)
+            try:
+                parts = self._parts(model, link, description.visuals, view.files)
+            except Exception as error:  # one model's visuals never end the world: warned of, drawn from collisions
+                self._warnings.append(
+                    f"model '{model.name}' link '{link}' visuals{_files_named(description.visuals)}: "
+                    f"{type(error).__name__}: {error}: the cameras draw link '{link}' from its collisions"
+                )
+                parts = []
             if parts:
                 drawn[link] = parts
                 view.hidden.update(geoms)
@@ -126,8 +153,9 @@ class Scene:
         view.set_links(drawn)
         return view
 
-    def _parts(self, model: BuiltModel, link: str, visuals: List[Visual], cache: Dict[str, Triangles]) -> List[Part]:
-        """The link's visuals posed in it; none if a mesh of them cannot be read (with a warning)."""
+    def _parts(self, model: BuiltModel, link: str, visuals: List[Visual], files: Set[str]) -> List[Part]:
+        """The link's visuals posed in it; none if a mesh of them cannot be read (with a warning). ``files`` gets
+        the mesh files used."""
         parts = []
         for visual in visuals:
             colour = visual.color if visual.color is not None else DEFAULT_COLOR
@@ -138,11 +166,12 @@ class Scene:
                 continue
             what = f"model '{model.name}' link '{link}' visual '{visual.name}' mesh '{visual.geometry.uri}'"
             try:
-                triangles = mesh_file(self.resources, visual.geometry, model.robot.base, what, cache)
+                triangles = mesh_file(self.resources, visual.geometry, model.robot.base, what, self._files)
                 vertices, faces = scaled_mesh(triangles, visual.geometry.scale, what)
-            except ModelError as error:
-                self._warnings.append(f"{error}: the cameras draw link '{link}' from its collisions")
+            except ValueError as error:  # ModelError, and what the checks did not foresee
+                self._warnings.append(f"{what}: {error}: the cameras draw link '{link}' from its collisions")
                 return []
+            files.add(self.resources.resolve(visual.geometry.uri, model.robot.base))  # type: ignore[union-attr]
             parts.append((mesh_pose(position, rotation, colour), (vertices, faces.astype(np.uint32))))
         return parts
 
@@ -152,6 +181,8 @@ class Scene:
         live = set(models)
         if any(model not in live for model in self._views):
             self._views = {model: view for model, view in self._views.items() if model in live}
+            used = set().union(*(view.files for view in self._views.values()))
+            self._files = {path: found for path, found in self._files.items() if path in used}
         found = []
         for model in models:
             if model is camera_model:
@@ -166,24 +197,47 @@ class Scene:
         """What a camera on ``camera_model`` draws now, its own model and the ground plane aside: the primitive
         table (N, STRIDE) and the meshes."""
         views = self._current(camera_model)
+        drawn_tables: List[np.ndarray] = []
+        drawn_meshes: List[MeshItem] = []
+        for index, (model, view) in enumerate(views):
+            if not view.links:
+                continue
+            tables: List[np.ndarray] = []
+            meshes: List[MeshItem] = []
+            try:
+                view.draw(model, tables, meshes)
+            except Exception as error:  # drawn from its collisions, from this rendering on
+                self._warnings.append(
+                    f"model '{model.name}' visuals cannot be drawn ({type(error).__name__}: {error}): the cameras "
+                    "draw its links from their collisions"
+                )
+                view = self._views[model] = _View.of_collisions(model)
+                views[index] = (model, view)
+                continue
+            drawn_tables += tables
+            drawn_meshes += meshes
         colours: Dict[ode.GeomObject, RGB] = {}
         hidden: Set[ode.GeomObject] = set()
         for _, view in views:
             colours.update(view.colours)
             hidden.update(view.hidden)
         rows: List[np.ndarray] = []
-        meshes: List[MeshItem] = []
+        geom_meshes: List[MeshItem] = []
         for geom in world_geoms(physics, camera_model):
             if geom in hidden:
                 continue
             colour = colours.get(geom, DEFAULT_COLOR)
             if isinstance(geom, MeshGeom):
-                meshes.append((mesh_pose(geom.getPosition(), geom.getRotation(), colour), geom.vertices, geom.faces))
+                geom_meshes.append(
+                    (mesh_pose(geom.getPosition(), geom.getRotation(), colour), geom.vertices, geom.faces)
+                )
                 continue
             row = primitive_row(geom, colour)
             if row is not None:
                 rows.append(row)
-        tables = [np.array(rows).reshape(-1, STRIDE)]
-        for model, view in views:
-            view.draw(model, tables, meshes)
-        return np.concatenate(tables), meshes
+        return np.concatenate([np.array(rows).reshape(-1, STRIDE)] + drawn_tables), geom_meshes + drawn_meshes
+
+
+def _files_named(visuals: List[Visual]) -> str:
+    uris = [visual.geometry.uri for visual in visuals if isinstance(visual.geometry, Mesh)]
+    return f" (mesh {', '.join(repr(uri) for uri in uris)})" if uris else ""

@@ -148,6 +148,16 @@ class Simulation(WorldControl):
         self._spawned[name] = _Spawned.of(model)
         return warnings + plugins.warnings + sensors.warnings
 
+    def models_seen_by_cameras(self, robot: RobotModel) -> List[RobotModel]:
+        """The models whose visual meshes a spawn of ``robot`` should read ahead: ``robot`` if a camera exists or it
+        has one, and every model if it brings the first camera; ModelError if its sensor blocks are bad."""
+        cameras_before = any(plugins.cameras for plugins in self.plugins.values())
+        brings_camera = bool(model_sensors(robot).cameras)
+        seen = [robot] if cameras_before or brings_camera else []
+        if brings_camera and not cameras_before:
+            seen += [model.robot for model in self.models.values()]
+        return seen
+
     def _spawn_pose(self, pose: SpawnPose, reference_frame: str) -> Pose6:
         """(x, y, z, roll, pitch, yaw) in the world for build_model."""
         size = len(pose) if isinstance(pose, (tuple, list)) else 0
