@@ -10,4 +10,7 @@ except ImportError:  # not sourced, or the system's rqt_gui on the path
     sys.modules.pop("rqt_gui", None)
     sys.modules.pop("rqt_standalone", None)
     HERE = os.path.dirname(os.path.abspath(__file__))
-    sys.path[:0] = [os.path.join(HERE, "..", "..", "src"), os.path.join(HERE, "..", "..", "..", "rqt_standalone", "src")]
+    sys.path[:0] = [
+        os.path.join(HERE, "..", "..", "src"),
+        os.path.join(HERE, "..", "..", "..", "rqt_standalone", "src"),
+    ]
