@@ -35,23 +35,27 @@ DEFAULT_JSON = os.path.join(REPO, "bench_results", "bench_rqt.json")
 
 
 def frame_row(name: str, result: Dict[str, Any]) -> str:
-    first, last = result["frame_first_minute"], result["frame_last_minute"]
-    return "%-26s %8.2f %8.2f %9.2f %9.2f %8.1f %8.1f" % (
+    first, last, fresh = (result["frame_" + when] for when in ("first_minute", "last_minute", "fresh_last_minute"))
+    return "%-24s %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.1f %7.1f" % (
         name,
         first["median_ms"],
         first["p95_ms"],
         last["median_ms"],
         last["p95_ms"],
+        fresh["median_ms"],
+        fresh["p95_ms"],
         result["rss_mib_start"],
         result["rss_mib_end"],
     )
 
 
 def table(results: Dict[str, Any]) -> str:
+    header = "%-24s %7s %7s %7s %7s %7s %7s %7s %7s"
     lines = [
-        "rqt_plot: redraw per frame (ms), first and last minute; memory of the process (MiB)",
-        "%-26s %8s %8s %9s %9s %8s %8s" % ("", "first", "p95", "last", "p95", "RSS", "RSS"),
-        "%-26s %8s %8s %9s %9s %8s %8s" % ("", "median", "", "median", "", "start", "end"),
+        "rqt_plot: redraw per frame (ms) in the first and the last minute, and of a twin plot cleared every minute",
+        "(a fresh plot at the same moment, drawn alternately with it); memory of the process (MiB)",
+        header % ("", "first", "", "last", "", "fresh", "at end", "RSS", "RSS"),
+        header % ("", "median", "p95", "median", "p95", "median", "p95", "start", "end"),
     ]
     injected = results.get("plot_injected", {})
     if "error" in injected:
@@ -82,6 +86,7 @@ def table(results: Dict[str, Any]) -> str:
         lines.append("rqt_console: ERROR %s" % console["error"])
     elif console:
         latency, insert = console["event_loop_latency"], console["batch_insert"]
+        idle = console["event_loop_latency_idle"]
         lines += [
             "rqt_console at %.0f messages/s for %.0f s" % (console["rate_per_s"], console["seconds"]),
             "  sent %d, received %d, kept %d (limit %d), newest on top: %s"
@@ -94,6 +99,8 @@ def table(results: Dict[str, Any]) -> str:
             ),
             "  event-loop latency (10 ms timer): median %.2f ms, p95 %.2f ms, max %.1f ms"
             % (latency["median_ms"], latency["p95_ms"], latency["max_ms"]),
+            "  the same probe idle, before the flood: median %.2f ms, p95 %.2f ms, max %.1f ms"
+            % (idle["median_ms"], idle["p95_ms"], idle["max_ms"]),
             "  batch insert (every 100 ms): median %.2f ms, p95 %.2f ms, max %.1f ms over %d batches"
             % (insert["median_ms"], insert["p95_ms"], insert["max_ms"], insert["count"]),
             "  RSS %.1f -> %.1f MiB" % (console["rss_mib_start"], console["rss_mib_end"]),
@@ -103,7 +110,10 @@ def table(results: Dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def measure(results: Dict[str, Any], key: str, title: str, run) -> None:
+def measure(results: Dict[str, Any], key: str, title: str, run, wanted: Sequence[str]) -> None:
+    """results[key] = run() if key is wanted, or {"error": why} if it could not be measured."""
+    if key not in wanted:
+        return
     print("%s ..." % title, flush=True)
     try:
         results[key] = run()
@@ -119,9 +129,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--buffer-size", type=int, default=20000, help="rqt_plot's points per curve (default 20000)")
     parser.add_argument("--console-rate", type=float, default=1000.0, help="log messages per second (default 1000)")
     parser.add_argument("--console-seconds", type=float, default=30.0, help="flood length (default 30)")
+    parser.add_argument(
+        "--sections", default="plot_injected,plot_real_time,console", help="which to run (default: %(default)s)"
+    )
     parser.add_argument("--display", action="store_true", help="draw on $DISPLAY instead of Qt's offscreen platform")
     parser.add_argument("--json", default=DEFAULT_JSON, help="where to write the results (default: %(default)s)")
     args = parser.parse_args(argv)
+    wanted = args.sections.split(",")
+    unknown = set(wanted) - {"plot_injected", "plot_real_time", "console"}
+    if unknown:
+        parser.error("unknown sections: %s" % ", ".join(sorted(unknown)))
     if not shutil.which("roscore") or not shutil.which("rosrun"):
         print("roscore/rosrun not found: source catkin_ws/devel/setup.bash first", file=sys.stderr)
         return 2
@@ -148,18 +165,21 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                 "plot_injected",
                 "1. rqt_plot, injected data",
                 lambda: plot_injected(app, args.data_minutes, args.buffer_size),
+                wanted,
             )
             measure(
                 results,
                 "plot_real_time",
                 "2. rqt_plot, real time on turtlesim",
                 lambda: plot_real_time(app, args.minutes, processes, ros.ros_env),
+                wanted,
             )
             measure(
                 results,
                 "console",
                 "3. rqt_console flood",
                 lambda: console_flood(app, args.console_rate, args.console_seconds, processes, ros.ros_env),
+                wanted,
             )
             rospy.signal_shutdown("benchmark done")
     ticks, stolen = (end - start for end, start in zip(cpu_ticks(), ticks_at_start))

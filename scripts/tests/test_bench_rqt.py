@@ -39,7 +39,7 @@ def test_plot_sections(results):
     injected, real = results["plot_injected"], results["plot_real_time"]
     assert injected["points_per_curve_at_end"] == int(0.5 * 60 * 62.5)
     for section in (injected, real):
-        for when in ("frame_first_minute", "frame_last_minute"):
+        for when in ("frame_first_minute", "frame_last_minute", "frame_fresh_last_minute"):
             assert section[when]["count"] > 0 and math.isfinite(section[when]["median_ms"]), section
         assert section["rss_mib_end"] > 0
     # turtlesim publishes at 62.5 Hz; a busy machine may lose the odd message on the way
@@ -51,4 +51,5 @@ def test_console_section_kept_up(results):
     assert console["sent"] == 3000 and console["received"] == console["sent"] == console["kept"]
     assert console["newest_on_top"]
     assert console["event_loop_latency"]["count"] > 0 and console["batch_insert"]["count"] > 0
+    assert console["event_loop_latency_idle"]["count"] > 0
     assert 0.0 <= results["machine"]["stolen_cpu_share"] < 1.0

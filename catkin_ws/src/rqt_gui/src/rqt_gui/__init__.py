@@ -1,1 +1,1 @@
-"""Drop-in rqt: the standalone runner of the workspace's rqt tools and the `rqt` main window."""
+"""Drop-in rqt: the `rqt` main window and the table of the tools its Plugins menu opens."""

@@ -14,7 +14,7 @@ from python_qt_binding.QtCore import Qt
 from python_qt_binding.QtWidgets import QDockWidget, QMainWindow
 
 from rqt_gui import plugins as plugin_table
-from rqt_gui.standalone import run
+from rqt_standalone.runner import run
 
 TITLE = "Default - rqt"  # the real rqt names its window after the perspective, "Default" at first
 

@@ -5,7 +5,12 @@ import sys
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ.setdefault("PYTEST_QT_API", "pyqt5")  # python_qt_binding is PyQt5; pytest-qt would take PyQt6 if present
 try:
-    import rqt_gui.standalone  # noqa: F401
-except ImportError:  # not sourced, or the system's rqt_gui (which has no standalone runner) on the path
+    import rqt_gui.main_window  # noqa: F401
+except ImportError:  # not sourced, or the system's rqt_gui on the path
     sys.modules.pop("rqt_gui", None)
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src"))
+    sys.modules.pop("rqt_standalone", None)
+    HERE = os.path.dirname(os.path.abspath(__file__))
+    sys.path[:0] = [
+        os.path.join(HERE, "..", "..", "src"),
+        os.path.join(HERE, "..", "..", "..", "rqt_standalone", "src"),
+    ]

@@ -7,7 +7,7 @@ import tempfile
 
 import pytest
 
-from rqt_gui import standalone
+from rqt_standalone import runner as standalone
 
 SRC = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src")
 
@@ -72,7 +72,7 @@ def test_run_without_display_prints_one_line_and_returns_1():
     """In a process of its own: the factory must never be called, no Qt application made."""
     code = (
         "import sys; sys.path.insert(0, %r)\n"
-        "from rqt_gui.standalone import run\n"
+        "from rqt_standalone.runner import run\n"
         "def factory(args): raise AssertionError('called')\n"
         "sys.exit(run(factory, ['rqt_x'], 'x'))\n" % SRC
     )
@@ -97,7 +97,7 @@ rospy.signal_shutdown = lambda reason: events.append(("signal_shutdown",))
 sys.modules["rospy"] = rospy
 from python_qt_binding.QtCore import QTimer
 from python_qt_binding.QtWidgets import QLabel
-from rqt_gui.standalone import run
+from rqt_standalone.runner import run
 
 def factory(args):
     events.append(("factory", args))
