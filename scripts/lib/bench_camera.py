@@ -89,14 +89,19 @@ def room_sdf() -> str:
     return ROOM_SDF.format(links="".join(links))
 
 
-def turtlebot_in_room(camera: Optional[Tuple[int, int, float]]) -> Tuple[Any, List[Callable[[], None]]]:
-    """The Simulation and, with ``camera`` (width, height, rate), one renderer-and-packer per camera."""
+def turtlebot_in_room(
+    camera: Optional[Tuple[int, int, float]], sensor_block: str = ""
+) -> Tuple[Any, List[Callable[[], None]]]:
+    """The Simulation and, with ``camera`` (width, height, rate), one renderer-and-packer per camera;
+    ``sensor_block``: URDF text that replaces the robot's closing tag (another sensor, bench_lidar's)."""
     from turtle_sim_ode.world.simulation import Simulation
 
     with open(URDF_PATH) as urdf_file:
         urdf = urdf_file.read()
     if camera is not None:
         urdf = with_camera(urdf, camera)
+    if sensor_block:
+        urdf = urdf.replace("</robot>", sensor_block)
     sim = Simulation()
     sim.spawn_urdf(MODEL, urdf, (0.0, -1.0, 0.0, 0.0, 0.0, 0.0))
     sim.spawn_sdf("room", room_sdf())
@@ -145,6 +150,17 @@ def stepper(sim: Any, frames: Sequence[Callable[[], None]], rate: float) -> Call
     return run
 
 
+def best_seconds(works: Sequence[Callable[[], None]], repeats: int) -> List[float]:
+    """The best wall time of each of ``works`` over ``repeats`` rounds, run in turns so each sees the same load."""
+    best = [float("inf")] * len(works)
+    for _ in range(repeats):
+        for index, work in enumerate(works):
+            start = time.perf_counter()
+            work()
+            best[index] = min(best[index], time.perf_counter() - start)
+    return best
+
+
 def camera_cost(
     steps: int = 3000, repeats: int = 3, cameras: Sequence[Tuple[int, int, float]] = CAMERAS
 ) -> Dict[str, Any]:
@@ -153,25 +169,13 @@ def camera_cost(
     runs = [stepper(*turtlebot_in_room(None), 0.0)]
     worlds = [turtlebot_in_room(camera) for camera in cameras]
     runs += [stepper(sim, frames, camera[2]) for (sim, frames), camera in zip(worlds, cameras)]
-    best = [float("inf")] * len(runs)
-    for _ in range(repeats):
-        for index, run in enumerate(runs):
-            start = time.perf_counter()
-            run(steps)
-            best[index] = min(best[index], time.perf_counter() - start)
+    best = best_seconds([lambda run=run: run(steps) for run in runs], repeats)
     time_step = worlds[0][0].physics.time_step
     rtf = [steps * time_step / seconds for seconds in best]
     rows = []
     for index, ((width, height, rate), (sim, frames)) in enumerate(zip(cameras, worlds)):
         numpy_frame = frame_work(sim, sim.plugins[MODEL].cameras[0], ray_kernel=False)
-        frame_best = numpy_best = float("inf")
-        for _ in range(max(3, repeats)):  # in turns, as above
-            start = time.perf_counter()
-            frames[0]()
-            frame_best = min(frame_best, time.perf_counter() - start)
-            start = time.perf_counter()
-            numpy_frame()
-            numpy_best = min(numpy_best, time.perf_counter() - start)
+        frame_best, numpy_best = best_seconds([frames[0], numpy_frame], max(3, repeats))
         rows.append(
             {
                 "width": width,

@@ -10,6 +10,7 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from bench_camera import CAMERAS, TARGET_SHARE
 from bench_camera import table as camera_table
+from bench_lidar import table as lidar_table
 
 
 def debian_version(package: str) -> str:
@@ -255,6 +256,11 @@ def table(results: Dict[str, Any]) -> str:
     section("5. peer: the same URDF in PyBullet, same dt and wheel command", "peer", peer_lines)
     section(
         "6. cameras: 1 TurtleBot with an RGB-D camera in a furnished room, rates in sim time", "cameras", camera_lines
+    )
+    section(
+        "7. lidar: 1 TurtleBot with a 3D lidar (libgazebo_ros_velodyne_laser.so) in the furnished room, no ROS",
+        "lidar",
+        lambda r: lidar_table(r).splitlines(),
     )
     lines.append("targets")
     lines.append("   %-44s %10s  %-13s %s" % ("target", "value", "goal", "result"))

@@ -1,9 +1,5 @@
 from catkin_pkg.python_setup import generate_distutils_setup
-from setuptools import setup
+from setuptools import find_packages, setup
 
-LAYERS = ("physics", "models", "sensors", "world", "ros", "analysis")
-setup(
-    **generate_distutils_setup(
-        packages=["turtle_sim_ode"] + ["turtle_sim_ode." + layer for layer in LAYERS], package_dir={"": "src"}
-    )
-)
+# turtle_sim_ode and its layers (physics, models, sensors, world, ros, analysis) with their subpackages (plugins).
+setup(**generate_distutils_setup(packages=find_packages("src"), package_dir={"": "src"}))

@@ -2,7 +2,8 @@
  * optical centre against primitive shapes (box, sphere, cylinder, capsule along z, plane) and triangle meshes, each
  * tested only in the pixels its projection may cover. The same tests as turtle_sim_ode.sensors.raycast, which the
  * Python side uses where this library is not built, but on rays (u, v, 1) whose parameter is the depth (numpy: unit
- * rays, the near clip turned into a distance per ray); both clip at the near plane, as OpenGL does. */
+ * rays, the near clip turned into a distance per ray); both clip at the near plane, as OpenGL does. The multi-beam
+ * lidars' rays (tso_rays, at the end) are unit rays in any direction against the same shapes. */
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
@@ -346,6 +347,27 @@ static void cross3(const double* a, const double* b, double* out)
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* Moller-Trumbore: the parameter t at which the ray origin + t d meets the triangle v0 + a e1 + b e2 (either side),
+ * INFINITY if it misses; ``toOrigin`` = origin - v0 and ``q`` = toOrigin x e1, the same for every ray from origin. */
+static double triangleHit(const double* d, const double* e1, const double* e2, const double* toOrigin, const double* q)
+{
+  double pv[3];
+  cross3(d, e2, pv);
+  double det = dot3(e1, pv);
+  if (det == 0.0)
+  {
+    return INFINITY;
+  }
+  double inverse = 1.0 / det;
+  double a = dot3(toOrigin, pv) * inverse;
+  double b = dot3(d, q) * inverse;
+  if (a < 0.0 || b < 0.0 || a + b > 1.0)
+  {
+    return INFINITY;
+  }
+  return dot3(e2, q) * inverse;
+}
+
 /* A mesh's triangles in rows [rowBegin, rowEnd), each in the pixels its projection may cover, seen from both sides
  * (a mesh need not be closed, nor its faces wound one way) with one shade a triangle. Returns the ray tests made. */
 static long meshRows(const Scene* s, const Mesh* mesh, int rowBegin, int rowEnd, double* restrict distance,
@@ -427,21 +449,7 @@ static long meshRows(const Scene* s, const Mesh* mesh, int rowBegin, int rowEnd,
           d[a] = local[3 * a] * u + local[3 * a + 1] * vv + local[3 * a + 2];
         }
         ++tests;
-        double pv[3];
-        cross3(d, e2, pv);
-        double det = dot3(e1, pv);
-        if (det == 0.0)
-        {
-          continue;
-        }
-        double inverse = 1.0 / det;
-        double a = dot3(toCamera, pv) * inverse;
-        double b = dot3(d, q) * inverse;
-        if (a < 0.0 || b < 0.0 || a + b > 1.0)
-        {
-          continue;
-        }
-        double t = dot3(e2, q) * inverse; /* the hit's depth: the ray's optical z is 1 */
+        double t = triangleHit(d, e1, e2, toCamera, q); /* the hit's depth: the ray's optical z is 1 */
         int p = j * s->width + i;
         if (t > s->tMin && t < distance[p])
         {
@@ -751,4 +759,153 @@ long tso_cloud(int width, int height, const float* depth, const uint8_t* rgb, do
 {
   Cloud job = { width, depth, rgb, focal, cx, cy, cutoff, cutoffMax, depthOut, cloud };
   return runBands(threads, height, cloudBand, &job);
+}
+
+/* What tso_rays casts: see tso_rays. */
+typedef struct
+{
+  const double* origin;
+  const double* directions;
+  int count;
+  const double* primitives;
+  int meshCount;
+  const Mesh* meshes;
+  const double* meshRadii;
+  double tMin, tMax;
+  double* distance;
+} Rays;
+
+/* The nearest hit of the ray start + t d (``d`` a unit vector, both in the mesh's frame) on ``mesh``'s triangles
+ * with t in (tMin, best), seen from both sides; ``best`` if none. Counts the tests in ``tests``. */
+static double meshHit(const Mesh* mesh, const double* start, const double* d, double tMin, double best, long* tests)
+{
+  for (int f = 0; f < mesh->faceCount; ++f)
+  {
+    const double* v0 = mesh->vertices + 3 * (long)mesh->faces[3 * (long)f];
+    const double* v1 = mesh->vertices + 3 * (long)mesh->faces[3 * (long)f + 1];
+    const double* v2 = mesh->vertices + 3 * (long)mesh->faces[3 * (long)f + 2];
+    double e1[3], e2[3], toStart[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      e1[a] = v1[a] - v0[a];
+      e2[a] = v2[a] - v0[a];
+      toStart[a] = start[a] - v0[a];
+    }
+    ++*tests;
+    double q[3];
+    cross3(toStart, e1, q);
+    double t = triangleHit(d, e1, e2, toStart, q);
+    if (t > tMin && t < best)
+    {
+      best = t;
+    }
+  }
+  return best;
+}
+
+/* The band's rays: every primitive and mesh whose bounding sphere the ray passes within (tMin, best so far). */
+static void* raysBand(void* arg)
+{
+  Band* band = (Band*)arg;
+  const Rays* s = (const Rays*)band->job;
+  const double* origin = s->origin;
+  long tests = 0;
+  for (int r = band->rowBegin; r < band->rowEnd; ++r)
+  {
+    const double* d = s->directions + 3 * (long)r;
+    double best = INFINITY;
+    for (int k = 0; k < s->count; ++k)
+    {
+      const double* row = s->primitives + (long)k * kStride;
+      int type = (int)row[0];
+      const double* shape = row + kRotation; /* world from shape; a plane's normal */
+      const double* params = row + kParams;
+      if (type == kPlane)
+      {
+        ++tests;
+        double facing = dot3(shape, d);
+        if (facing < 0.0)
+        {
+          double t = (params[0] - dot3(shape, origin)) / facing;
+          if (t > s->tMin && t < best)
+          {
+            best = t;
+          }
+        }
+        continue;
+      }
+      double rel[3] = { row[kPosition] - origin[0], row[kPosition + 1] - origin[1], row[kPosition + 2] - origin[2] };
+      double along = dot3(rel, d);
+      double radius = row[kRadius];
+      if (along + radius <= s->tMin || along - radius >= best || dot3(rel, rel) - along * along > radius * radius)
+      {
+        continue;
+      }
+      double start[3], local[3]; /* the ray in the shape's frame */
+      for (int a = 0; a < 3; ++a)
+      {
+        start[a] = -(shape[a] * rel[0] + shape[3 + a] * rel[1] + shape[6 + a] * rel[2]);
+        local[a] = shape[a] * d[0] + shape[3 + a] * d[1] + shape[6 + a] * d[2];
+      }
+      double n[3];
+      double t = INFINITY;
+      ++tests;
+      switch (type)
+      {
+        case kBox:
+          t = hitBox(start, local, params, s->tMin, n);
+          break;
+        case kSphere:
+          t = hitSphere(start, local, params[0], s->tMin, n);
+          break;
+        case kCylinder:
+          t = hitCylinder(start, local, params[0], params[1], s->tMin, n);
+          break;
+        case kCapsule:
+          t = hitCapsule(start, local, params[0], params[1], s->tMin, n);
+          break;
+        default:
+          break;
+      }
+      if (t < best)
+      {
+        best = t;
+      }
+    }
+    for (int m = 0; m < s->meshCount; ++m)
+    {
+      const Mesh* mesh = &s->meshes[m];
+      const double* position = mesh->pose;
+      const double* shape = mesh->pose + 3;
+      double rel[3] = { position[0] - origin[0], position[1] - origin[1], position[2] - origin[2] };
+      double along = dot3(rel, d);
+      double radius = s->meshRadii[m];
+      if (along + radius <= s->tMin || along - radius >= best || dot3(rel, rel) - along * along > radius * radius)
+      {
+        continue;
+      }
+      double start[3], local[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        start[a] = -(shape[a] * rel[0] + shape[3 + a] * rel[1] + shape[6 + a] * rel[2]);
+        local[a] = shape[a] * d[0] + shape[3 + a] * d[1] + shape[6 + a] * d[2];
+      }
+      best = meshHit(mesh, start, local, s->tMin, best, &tests);
+    }
+    s->distance[r] = best <= s->tMax ? best : INFINITY;
+  }
+  band->count = tests;
+  return NULL;
+}
+
+/* A multi-beam lidar's rays: ``rayCount`` unit ``directions`` (world frame, 3 doubles each) from ``origin`` against
+ * ``count`` primitives (rows as tso_render's; planes included) and ``meshCount`` meshes (``meshRadii``: each mesh's
+ * bounding radius about its position). Fills ``distance`` with each ray's nearest hit at a distance in (tMin, tMax],
+ * INFINITY where there is none, in up to ``threads`` bands of rays at once. Returns the number of ray tests made. */
+long tso_rays(int rayCount, const double* origin, const double* directions, int count, const double* primitives,
+              int meshCount, const Mesh* meshes, const double* meshRadii, double tMin, double tMax, double* distance,
+              int threads)
+{
+  Rays job = { origin, directions, count, primitives, meshCount, meshes, meshRadii, tMin, tMax, distance };
+  return runBands(threads, rayCount, raysBand, &job);
 }

@@ -183,6 +183,8 @@ class World:
     # For the cameras: the first directional <light>'s <direction>, and <scene><background>; None: Gazebo's defaults.
     light_direction: Optional[Vec3] = None
     background: Optional[RGB] = None
+    # <spherical_coordinates>: latitude_deg, longitude_deg, elevation, heading_deg (None: Gazebo's zeros).
+    spherical_coordinates: Optional[Tuple[float, float, float, float]] = None
     warnings: List[str] = field(default_factory=list)
 
 
@@ -672,6 +674,10 @@ def parse_sdf_world(text: str) -> World:
             world.light_direction = direction if direction is not None and any(direction) else None
         elif child.tag == "scene":
             world.background = rgb_of(child_text(child, "background")) or world.background
+        elif child.tag == "spherical_coordinates":
+            tags = ("latitude_deg", "longitude_deg", "elevation", "heading_deg")
+            values = (_float(child, tag, "<spherical_coordinates>", 0.0) for tag in tags)
+            world.spherical_coordinates = tuple(values)  # type: ignore[assignment]
         elif child.tag not in SILENT_WORLD_TAGS + ("physics", "gravity"):
             warnings.append(f"<world> <{child.tag}> is not supported, ignored")
     if not world.ground_plane:

@@ -15,7 +15,7 @@ from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, plugin_topic, topic_prefix
 from turtle_sim_ode.ros.wire import Packed, release
 from turtle_sim_ode.sensors.camera import CLOUD_POINT_STEP, CameraSensor, Frame
-from turtle_sim_ode.sensors.config import CameraConfig
+from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.scene import Scene
 
 # sensor_msgs/PointCloud2 as gazebo_ros_openni_kinect lays it out (PointCloud2Modifier "xyz", "rgb"): x, y, z

@@ -27,7 +27,7 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.gazebo_api import MAX_RAYS_PER_MODEL, GazeboApi, TopicTypes, known_topic_types, summarise
 from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
 from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, sim_stamp
-from turtle_sim_ode.ros.plugin_topics import model_interfaces
+from turtle_sim_ode.ros.plugins import model_interfaces
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
 from turtle_sim_ode.ros.wire import ClockPacker, PackedPublisher, release, stamp_parts
 from turtle_sim_ode.world.simulation import Simulation

@@ -3,11 +3,15 @@ schedule of its own in sim time (Periodic), and advertising that checks each top
 a model's spawn can be refused or undone whole (Advertising)."""
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any, Callable, List, Optional
 
 import rospy
 
+from turtle_sim_ode.models.builder import BuiltModel
+from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import PackedPublisher, stamp_parts
+from turtle_sim_ode.world.simulation import Simulation
 
 
 def sim_stamp(seconds: float) -> rospy.Time:
@@ -86,3 +90,19 @@ def subscriber(topic: str, msg_type: type, callback: Callable[[Any], None], queu
     if Advertising.check is not None:
         Advertising.check(topic, msg_type)
     return _opened(rospy.Subscriber(topic, msg_type, callback, queue_size=queue_size))
+
+
+@dataclass
+class ModelContext:
+    """What a plugin's ROS adapter (ros.plugins) is made with: the model's name, the simulation (the model is
+    ``sim.models[name]``), the node's settings and tf broadcaster, and the spawn's robot namespace ("": none)."""
+
+    name: str
+    sim: Simulation
+    settings: SimulatorSettings
+    tf_broadcaster: PackedPublisher
+    namespace: str
+
+    @property
+    def model(self) -> BuiltModel:
+        return self.sim.models[self.name]

@@ -18,7 +18,7 @@ import numpy as np
 from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, quat_from_rpy, quat_matrix
 from turtle_sim_ode.models.materials import GAZEBO_MATERIALS, RGB
 from turtle_sim_ode.physics.world import PhysicsWorld
-from turtle_sim_ode.sensors.config import CameraConfig
+from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.ray_kernel import RayCaster, primitive_row
 from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
 from turtle_sim_ode.sensors.raycast import Primitive, hit_plane, hit_triangle, mesh_triangles

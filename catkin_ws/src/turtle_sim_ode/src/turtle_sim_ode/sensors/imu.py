@@ -12,7 +12,7 @@ from turtle_sim_ode.models.builder import (
     quat_multiply,
     quat_rotate,
 )
-from turtle_sim_ode.sensors.config import ImuNoise
+from turtle_sim_ode.sensors.plugins.imu import ImuNoise
 
 
 @dataclass(frozen=True)

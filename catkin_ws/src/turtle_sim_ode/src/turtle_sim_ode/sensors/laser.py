@@ -20,7 +20,7 @@ from turtle_sim_ode.models.builder import (
 )
 from turtle_sim_ode.physics.trimesh import collide as mesh_aware_collide
 from turtle_sim_ode.physics.world import PhysicsWorld
-from turtle_sim_ode.sensors.config import LaserConfig
+from turtle_sim_ode.sensors.plugins.laser import LaserConfig
 from turtle_sim_ode.sensors.rays import world_geoms
 
 # Below this tilt (sine, ~0.6 deg) a scan is culled by the AABB footprint, above by bounding spheres.

@@ -25,7 +25,7 @@ RGB = Tuple[float, float, float]
 def library() -> Optional[ctypes.CDLL]:
     """The loaded ray caster, or None if it is not built (searched once)."""
     lib = find_library(LIBRARY)
-    if lib is None or not all(hasattr(lib, name) for name in ("tso_render", "tso_cloud")):
+    if lib is None or not all(hasattr(lib, name) for name in ("tso_render", "tso_cloud", "tso_rays")):
         return None
     double_p, float_p, byte_p = (ctypes.POINTER(t) for t in (ctypes.c_double, ctypes.c_float, ctypes.c_uint8))
     lib.tso_render.restype = ctypes.c_long
@@ -36,6 +36,9 @@ def library() -> Optional[ctypes.CDLL]:
     lib.tso_cloud.restype = ctypes.c_long
     lib.tso_cloud.argtypes = [ctypes.c_int, ctypes.c_int, float_p, byte_p] + [ctypes.c_double] * 5
     lib.tso_cloud.argtypes += [float_p, byte_p, ctypes.c_int]
+    lib.tso_rays.restype = ctypes.c_long
+    lib.tso_rays.argtypes = [ctypes.c_int, double_p, double_p, ctypes.c_int, double_p, ctypes.c_int]
+    lib.tso_rays.argtypes += [ctypes.POINTER(Mesh), double_p, ctypes.c_double, ctypes.c_double, double_p, ctypes.c_int]
     return lib
 
 
@@ -142,6 +145,66 @@ def _pointer(array: np.ndarray, kind: type) -> ctypes._Pointer:
     return array.ctypes.data_as(ctypes.POINTER(kind))
 
 
+def _mesh_table(meshes: Sequence[MeshItem]) -> Tuple[list, ctypes.Array]:
+    """The meshes as C arrays (returned: they must live while the table is used) and their table of Mesh."""
+    arrays = [
+        (pose, np.ascontiguousarray(vertices, dtype=np.float64), np.ascontiguousarray(faces, dtype=np.uint32))
+        for pose, vertices, faces in meshes
+    ]
+    table = (Mesh * len(arrays))(
+        *(
+            Mesh(
+                _pointer(pose, ctypes.c_double),
+                len(faces),
+                _pointer(vertices, ctypes.c_double),
+                _pointer(faces, ctypes.c_uint32),
+            )
+            for pose, vertices, faces in arrays
+        )
+    )
+    return arrays, table
+
+
+def cast_rays(
+    lib: ctypes.CDLL,
+    origin: np.ndarray,
+    directions: np.ndarray,
+    table: np.ndarray,
+    meshes: Sequence[MeshItem],
+    t_min: float,
+    t_max: float,
+    threads: int,
+) -> Tuple[np.ndarray, int]:
+    """tso_rays: the distance along each unit ray (``directions``, (N, 3), world frame) from ``origin`` to its
+    nearest hit on ``table``'s rows (planes too) and ``meshes`` within (t_min, t_max], inf where there is none; and
+    the ray tests made."""
+    directions = np.ascontiguousarray(directions, dtype=np.float64).reshape(-1, 3)
+    table = np.ascontiguousarray(table, dtype=np.float64).reshape(-1, STRIDE)
+    arrays, mesh_table = _mesh_table(meshes)
+    radii = np.array(
+        [float(np.sqrt((vertices**2).sum(axis=1).max())) if len(vertices) else 0.0 for _, vertices, _ in arrays]
+    )
+    radii = np.ascontiguousarray(radii, dtype=np.float64)
+    origin = np.ascontiguousarray(origin, dtype=np.float64)
+    distance = np.empty(len(directions))
+    double = ctypes.c_double
+    tests = lib.tso_rays(
+        len(directions),
+        _pointer(origin, double),
+        _pointer(directions, double),
+        len(table),
+        _pointer(table, double),
+        len(arrays),
+        mesh_table,
+        _pointer(radii, double),
+        t_min,
+        t_max,
+        _pointer(distance, double),
+        threads,
+    )
+    return distance, tests
+
+
 class RayCaster:
     """Calls tso_render for one camera's image size; ``render`` fills and returns (depth as float64, INFINITY where
     nothing is hit; depth as float32, NaN there; rgb): rays through the pixel centres of a pinhole (focal, cx, cy)."""
@@ -172,21 +235,7 @@ class RayCaster:
     ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Cast the rays at ``table`` (rows of shape_row or primitive_row, tested in their order) and ``meshes``."""
         table = np.ascontiguousarray(table, dtype=np.float64).reshape(-1, STRIDE)
-        meshes = [
-            (pose, np.ascontiguousarray(vertices, dtype=np.float64), np.ascontiguousarray(faces, dtype=np.uint32))
-            for pose, vertices, faces in meshes
-        ]  # alive until tso_render returns
-        mesh_table = (Mesh * len(meshes))(
-            *(
-                Mesh(
-                    _pointer(pose, ctypes.c_double),
-                    len(faces),
-                    _pointer(vertices, ctypes.c_double),
-                    _pointer(faces, ctypes.c_uint32),
-                )
-                for pose, vertices, faces in meshes
-            )
-        )
+        meshes, mesh_table = _mesh_table(meshes)  # the arrays alive until tso_render returns
         width, height = self.size
         distance = self._distance
         depth = np.empty((height, width), dtype=np.float32)

@@ -31,6 +31,7 @@ from turtle_sim_ode.models.urdf import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_po
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsWorld
+from turtle_sim_ode.world.plugins import DriveRobot
 from turtle_sim_ode.world.records import (
     JointProperties,
     LinkProperties,
@@ -41,7 +42,6 @@ from turtle_sim_ode.world.records import (
     QuatXYZW,
     WorldProperties,
 )
-from turtle_sim_ode.world.robot import DiffDriveRobot
 from turtle_sim_ode.world.values import (
     MAX_FORCE,
     MAX_SPEED,
@@ -160,7 +160,7 @@ class WorldControl:
 
     physics: PhysicsWorld
     models: Dict[str, BuiltModel]
-    robots: Dict[str, DiffDriveRobot]
+    robots: Dict[str, DriveRobot]
     max_update_rate: float
     loads: List[Load]
 
@@ -457,7 +457,7 @@ class WorldControl:
                 raise WorldError(f"{key} must be >= 0, got {values[key]}")
             if key in ("cfm", "stop_cfm") and values[key] > sanity.MAX_CFM:
                 raise WorldError(f"{key} must be at most {sanity.MAX_CFM:g}, got {values[key]}")
-        driven = [robot for robot in self.robots.values() if handle in (robot.left, robot.right)]
+        driven = [robot for robot in self.robots.values() if handle in robot.wheels]
         overridden = sorted({"vel", "fmax"} & set(values))
         if driven and overridden:
             raise WorldError(
@@ -586,9 +586,8 @@ class WorldControl:
         _set_configuration(model, targets)
         now = self.physics.sim_time
         for robot in self.robots.values():
-            if robot.model is model and (robot.left.name in targets or robot.right.name in targets):
-                robot.odometry.reset(*robot.odometry.pose)
-                robot.update_odometry(now)
+            if robot.model is model and any(wheel.name in targets for wheel in robot.wheels):
+                robot.wheels_moved(now)
 
     # --- loads -------------------------------------------------------------------------------
     def _schedule(self, start_time: float, duration: float) -> Tuple[float, float]:

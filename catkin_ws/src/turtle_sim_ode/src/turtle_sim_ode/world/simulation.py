@@ -17,9 +17,8 @@ from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors
 from turtle_sim_ode.sensors.scene import Scene
 from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
-from turtle_sim_ode.world.plugins import ModelPlugins, read_plugins
+from turtle_sim_ode.world.plugins import DriveRobot, ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
-from turtle_sim_ode.world.robot import DiffDriveRobot
 from turtle_sim_ode.world.values import WorldError, update_rate, vector
 
 Pose6 = Tuple[float, float, float, float, float, float]
@@ -64,7 +63,7 @@ class Simulation(WorldControl):
         PhysicsWorld's."""
         self.physics = PhysicsWorld(physics_params, contact_kernel)
         self.models: Dict[str, BuiltModel] = {}
-        self.robots: Dict[str, DiffDriveRobot] = {}
+        self.robots: Dict[str, DriveRobot] = {}
         self.plugins: Dict[str, ModelPlugins] = {}  # what each model's plugin tags ask of the ROS side
         self.max_update_rate = (
             1.0 / self.physics.time_step if max_update_rate is None else update_rate(max_update_rate, "max_update_rate")
@@ -75,6 +74,8 @@ class Simulation(WorldControl):
         # The loaded world's sun direction and sky colour for the cameras (None: Gazebo's defaults).
         self.light_direction: Optional[Vec3] = None
         self.sky_colour: Optional[Tuple[float, float, float]] = None
+        # The loaded world's <spherical_coordinates> (latitude_deg, longitude_deg, elevation, heading_deg); GPS plugins.
+        self.spherical_coordinates: Optional[Tuple[float, float, float, float]] = None
         # What the cameras see of the models (their visuals), whose meshes are read through ``resources``.
         self.scene = Scene(self.models)
 
@@ -127,22 +128,18 @@ class Simulation(WorldControl):
         model.name = name
         warnings = list(robot.warnings) + model.warnings
         try:
-            plugins = read_plugins(name, robot.plugins, self._drive_overrides, list(model.joints))
+            plugins = read_plugins(name, robot.plugins, self._drive_overrides, list(model.joints), sensors)
             if len(plugins.drives) > 1:
                 warnings.append(
                     f"model has {len(plugins.drives)} drive plugins: only the first "
                     f"({plugins.drives[0].filename}) is used"
                 )
             if plugins.drives:
-                self.robots[name] = DiffDriveRobot(model, plugins.drives[0])
+                self.robots[name] = plugins.drives[0].make_robot(model)
                 self.robots[name].reset_odometry(self.sim_time)
         except (ModelError, ValueError) as error:
             model.remove()
             raise ModelError(f"model '{name}': {error}") from None
-        plugins.lasers = [laser for laser in sensors.lasers if laser.topic]
-        plugins.imus += sensors.imus
-        plugins.contacts = sensors.contacts
-        plugins.cameras = sensors.cameras
         self.models[name] = model
         self.plugins[name] = plugins
         self._spawned[name] = _Spawned.of(model)
@@ -206,6 +203,7 @@ class Simulation(WorldControl):
         old_params, old_rate = self.physics.params, self.max_update_rate
         self.physics.set_params(params)
         self.light_direction, self.sky_colour = world.light_direction, world.background
+        self.spherical_coordinates = world.spherical_coordinates
         self.max_update_rate = rate
         warnings = list(world.warnings)
         includes = world.includes
@@ -225,6 +223,7 @@ class Simulation(WorldControl):
             self.physics.set_params(old_params)
             self.max_update_rate = old_rate
             self.light_direction, self.sky_colour = None, None
+            self.spherical_coordinates = None
             raise
         for include in includes:
             named = f" (model '{include.name}')" if include.name else ""

@@ -1,0 +1,95 @@
+"""The ROS side of the plugins a model carries: one adapter module per plugin (or family) that owns its topics, made
+from the config its ROS-free module read (world.plugins, sensors.plugins). ``ADAPTERS`` maps a config's type to its
+module's ``interfaces(context, config)``; adding a plugin is a module and a line here.
+
+Each publisher keeps its own schedule in sim time; SimulatorNode calls publish_due() after every step."""
+from __future__ import annotations
+
+from typing import Callable, Dict, List, Optional
+
+from turtle_sim_ode.ros.periodic import Advertising, ModelContext, Periodic, TopicCheck
+from turtle_sim_ode.ros.plugins import (
+    block_laser,
+    bumper,
+    camera,
+    diff_drive,
+    force,
+    hector_gps,
+    hector_imu,
+    imu,
+    joint_state_publisher,
+    kobuki,
+    laser,
+    p3d,
+    planar_move,
+    range_finder,
+    skid_steer_drive,
+    velodyne,
+)
+from turtle_sim_ode.ros.settings import SimulatorSettings
+from turtle_sim_ode.ros.wire import PackedPublisher, release
+from turtle_sim_ode.sensors.plugins.block_laser import BlockLaserConfig
+from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
+from turtle_sim_ode.sensors.plugins.camera import CameraConfig
+from turtle_sim_ode.sensors.plugins.imu import ImuConfig
+from turtle_sim_ode.sensors.plugins.laser import LaserConfig
+from turtle_sim_ode.sensors.plugins.multicamera import MultiCameraConfig
+from turtle_sim_ode.sensors.plugins.range_finder import RangeConfig
+from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
+from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
+from turtle_sim_ode.world.plugins.force import ForceConfig
+from turtle_sim_ode.world.plugins.hector_gps import HectorGpsConfig
+from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
+from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
+from turtle_sim_ode.world.plugins.planar_move import PlanarMoveConfig
+from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
+from turtle_sim_ode.world.simulation import Simulation
+
+Adapter = Callable[[ModelContext, object], List[Periodic]]
+ADAPTERS: Dict[type, Adapter] = {
+    KobukiConfig: kobuki.interfaces,
+    DriveConfig: diff_drive.interfaces,
+    SkidSteerConfig: skid_steer_drive.interfaces,
+    PlanarMoveConfig: planar_move.interfaces,
+    GroundTruthConfig: p3d.interfaces,
+    JointStatesConfig: joint_state_publisher.interfaces,
+    ImuConfig: imu.interfaces,
+    LaserConfig: laser.interfaces,
+    ContactConfig: bumper.interfaces,
+    CameraConfig: camera.interfaces,
+    MultiCameraConfig: camera.multicamera_interfaces,
+    VelodyneConfig: velodyne.interfaces,
+    RangeConfig: range_finder.interfaces,
+    BlockLaserConfig: block_laser.interfaces,
+    HectorImuConfig: hector_imu.interfaces,
+    HectorGpsConfig: hector_gps.interfaces,
+    ForceConfig: force.interfaces,
+}
+
+
+def model_interfaces(
+    name: str,
+    sim: Simulation,
+    settings: SimulatorSettings,
+    tf_broadcaster: PackedPublisher,
+    namespace: str,
+    check_topic: Optional[TopicCheck] = None,
+) -> List[Periodic]:
+    """Every ROS publisher and subscriber the plugins of model `name` ask for (call under the world lock), each
+    topic first shown to ``check_topic``. All or nothing: if one fails, those opened so far are closed again."""
+    interfaces: List[Periodic] = []
+    Advertising.check, Advertising.opened = check_topic, []
+    context = ModelContext(name, sim, settings, tf_broadcaster, namespace)
+    plugins = sim.plugins.get(name)
+    try:
+        for config in plugins.configs if plugins is not None else []:
+            interfaces += ADAPTERS[type(config)](context, config)
+    except BaseException:
+        for interface in interfaces:
+            interface.close()
+        for handle in Advertising.opened:  # those of an interface that failed half-way
+            release(handle)
+        raise
+    finally:
+        Advertising.check, Advertising.opened = None, []
+    return interfaces

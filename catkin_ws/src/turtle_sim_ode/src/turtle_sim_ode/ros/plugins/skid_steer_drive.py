@@ -1,0 +1,79 @@
+"""gazebo_ros_skid_steer_drive's topics (world.plugins.skid_steer_drive), as GazeboRosSkidSteerDrive has them:
+``commandTopic`` (geometry_msgs/Twist: linear.x, angular.z) in; ``odometryTopic`` (nav_msgs/Odometry) out at
+``updateRate``, whether anyone listens or not, and ``odometryFrame`` -> ``robotBaseFrame`` on tf if ``broadcastTF``.
+The odometry is the model's pose from the physics state (publishOdometry: position x, y with z 0, the full
+orientation; twist x, y in the yaw-rotated frame and the world's yaw rate), covariances from the tags."""
+from __future__ import annotations
+
+import math
+from typing import List, Optional, Tuple
+
+import rospy
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+
+from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, subscriber
+from turtle_sim_ode.ros.plugin_topics import period, resolve_frame, tf_prefix
+from turtle_sim_ode.ros.plugins.drive import command_drive
+from turtle_sim_ode.ros.wire import OdometryPacker, PackedPublisher, TransformPacker, release
+from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig, SkidSteerRobot
+from turtle_sim_ode.world.simulation import Simulation
+
+UNKNOWN = 1e12  # z, roll and pitch: publishOdometry's covariance of what it does not measure
+
+
+def covariance(config: SkidSteerConfig) -> Tuple[float, ...]:
+    """The 6x6 diagonal publishOdometry sets on pose and twist alike."""
+    diagonal = (config.covariance_x, config.covariance_y, UNKNOWN, UNKNOWN, UNKNOWN, config.covariance_yaw)
+    return tuple(diagonal[index // 6] if index % 7 == 0 else 0.0 for index in range(36))
+
+
+class SkidSteerInterface(Periodic):
+    def __init__(
+        self, name: str, robot: SkidSteerRobot, sim: Simulation, tf: Optional[PackedPublisher], namespace: str
+    ) -> None:
+        config = robot.config
+        super().__init__(period(config.update_rate))
+        self.name = name
+        self.robot = robot
+        self._sim = sim
+        self._tf = tf
+        namespace = namespace or config.robot_namespace
+        prefix = tf_prefix(namespace, otherwise="")  # tf::getPrefixParam: "" when no tf_prefix parameter is set
+        odom_frame, base_frame = resolve_frame(prefix, config.odometry_frame), resolve_frame(prefix, config.base_frame)
+        self._command = subscriber(plugin_topic(namespace, config.command_topic), Twist, self._on_velocity, 1)
+        self._odom_pub = packed_publisher(plugin_topic(namespace, config.odometry_topic), Odometry)
+        self._odom_packer = OdometryPacker(odom_frame, base_frame, covariance(config), covariance(config))
+        self._tf_packer = TransformPacker(odom_frame, base_frame)
+
+    def _on_velocity(self, twist: Twist) -> None:
+        command_drive(self.name, self.robot, twist, self._sim.sim_time)
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        model = self.robot.model
+        position, orientation = model.link_pose(model.root_link)  # the model's pose (its canonical link's)
+        linear, angular = model.link_twist(model.root_link)
+        x, y, z, w = orientation
+        yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+        cos_yaw, sin_yaw = math.cos(yaw), math.sin(yaw)
+        twist_linear = (cos_yaw * linear[0] + sin_yaw * linear[1], cos_yaw * linear[1] - sin_yaw * linear[0], 0.0)
+        secs, nsecs = stamp.secs, stamp.nsecs
+        planar = (position[0], position[1], 0.0)
+        self._odom_pub.publish(
+            self._odom_packer.pack, secs, nsecs, planar, orientation, twist_linear, (0.0, 0.0, angular[2])
+        )
+        if self._tf is not None:
+            self._tf.publish(self._tf_packer.pack, secs, nsecs, position, orientation)
+
+    def close(self) -> None:
+        release(self._command)
+        release(self._odom_pub)
+
+
+def interfaces(context: ModelContext, config: SkidSteerConfig) -> List[Periodic]:
+    """The model's drive (the first drive plugin; the others were warned about at spawn)."""
+    robot = context.sim.robots.get(context.name)
+    if not isinstance(robot, SkidSteerRobot) or robot.config is not config:
+        return []
+    tf = context.tf_broadcaster if config.broadcast_tf and context.settings.publish_tf else None
+    return [SkidSteerInterface(context.name, robot, context.sim, tf, context.namespace)]

@@ -1,0 +1,114 @@
+"""velodyne_simulator's plugins (``libgazebo_ros_velodyne_laser.so`` in a ``ray`` sensor,
+``libgazebo_ros_velodyne_gpu_laser.so`` in a ``gpu_ray`` one; GazeboRosVelodyneLaser::Load of velodyne_gazebo_plugins
+1.0.12, noetic): the sensor's horizontal and vertical scan, range and update rate, and the plugin's tags with their
+defaults. The rays are sensors.lidar's; the cloud is built by ros.plugins.velodyne."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import List, Tuple
+
+import numpy as np
+from xml.etree.ElementTree import Element
+
+from turtle_sim_ode.models.text import ModelError, plugin_params, read_number
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid
+
+SENSOR_PLUGINS = {
+    "libgazebo_ros_velodyne_laser.so": ("ray",),
+    "libgazebo_ros_velodyne_gpu_laser.so": ("gpu_ray",),  # Load throws for a parent that is not a GpuRaySensor
+}
+# A point of the cloud (velodyne_gazebo_plugins 1.0.12): x, y, z, intensity float32, ring uint16, time float32.
+POINT_STEP = 22
+POINT = np.dtype(
+    {
+        "names": ["x", "y", "z", "intensity", "ring", "time"],
+        "formats": ["<f4", "<f4", "<f4", "<f4", "<u2", "<f4"],
+        "offsets": [0, 4, 8, 12, 16, 18],
+        "itemsize": POINT_STEP,
+    }
+)
+# At most this many rays a scan (a VLP-32C at 0.1 deg is 115,200; an HDL-64E at 0.08 deg 288,000).
+MAX_RAYS = 300_000
+
+
+@dataclass(frozen=True)
+class VelodyneConfig(RayGridConfig):
+    topic: str = "/points"
+    frame: str = "/world"
+    min_range: float = 0.0  # the plugin's band: points with min_range < r < max_range only
+    max_range: float = math.inf
+    min_intensity: float = -math.inf
+    gaussian_noise: float = 0.0
+    organize_cloud: bool = False
+    robot_namespace: str = "/"
+
+
+def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> VelodyneConfig:
+    name = sensor.get("name", "velodyne")
+    what = f"<sensor name='{name}'>"
+    grid = ray_grid(sensor, what)
+    params = plugin_params(plugin)
+    plugin_what = f"{what} <plugin filename='{plugin.get('filename')}'>"
+
+    def tag(key: str, default: float, minimum: float = -math.inf) -> float:
+        text = params.get(key)
+        if text is not None and text.strip().lower() in ("inf", "infinity"):
+            return math.inf
+        return read_number(text, f"{plugin_what} <{key}>", default, minimum)
+
+    organize = (params.get("organize_cloud") or "false").strip().lower()
+    if organize not in ("true", "false", "1", "0"):
+        raise ModelError(f"{plugin_what} <organize_cloud> must be true or false, got '{organize}'")
+    config = VelodyneConfig(
+        link=link,
+        name=name,
+        **grid,  # type: ignore[arg-type]
+        topic=(params.get("topicName") or "/points").strip(),
+        frame=(params.get("frameName") or "/world").strip(),
+        min_range=tag("min_range", 0.0),
+        max_range=tag("max_range", math.inf),
+        min_intensity=tag("min_intensity", -math.inf),
+        gaussian_noise=tag("gaussianNoise", 0.0, minimum=0.0),
+        organize_cloud=organize in ("true", "1"),
+        robot_namespace=(params.get("robotNamespace") or "/").strip(),
+    )
+    if config.rays > MAX_RAYS:
+        raise ModelError(f"{what}: {config.rays} rays a scan, more than {MAX_RAYS}")
+    return config
+
+
+class VelodyneCloud:
+    """GazeboRosVelodyneLaser::OnScan's cloud of one scan: ``points(ranges)`` (rings x azimuths, as the sensor
+    reads them) -> (points as POINT records, height, width, is_dense)."""
+
+    def __init__(self, config: VelodyneConfig, directions: np.ndarray, rng: np.random.Generator) -> None:
+        """``directions``: the rays' unit vectors in the sensor frame, (rings, azimuths, 3)."""
+        self._config = config
+        self._rng = rng
+        self._low = max(config.min_range, config.range_min)
+        self._high = min(config.max_range, config.range_max)
+        self._directions = np.ascontiguousarray(np.transpose(directions, (1, 0, 2)))  # (azimuths, rings, 3)
+        self._rings = np.broadcast_to(np.arange(config.vertical_samples, dtype=np.uint16), self._directions.shape[:2])
+
+    def points(self, ranges: np.ndarray) -> Tuple[np.ndarray, int, int, bool]:
+        config = self._config
+        measured = ranges.T  # (azimuths, rings): OnScan's loop order
+        noisy = measured
+        if config.gaussian_noise:
+            noisy = measured + self._rng.normal(0.0, config.gaussian_noise, measured.shape)
+        in_band = (noisy > self._low) & (noisy < self._high)
+        intensity = 0.0  # Gazebo's laser_retro default; no retro-reflectors are simulated
+        if not config.organize_cloud:
+            in_band &= (measured > self._low) & (measured < self._high) & (intensity >= config.min_intensity)
+            cloud = np.zeros(int(in_band.sum()), dtype=POINT)
+            xyz = noisy[in_band][:, None] * self._directions[in_band]
+            cloud["x"], cloud["y"], cloud["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+            cloud["ring"] = self._rings[in_band]
+            return cloud, 1, len(cloud), True
+        cloud = np.zeros(measured.shape, dtype=POINT)
+        xyz = np.where(in_band[..., None], noisy[..., None] * self._directions, np.nan)
+        cloud["x"], cloud["y"], cloud["z"] = xyz[..., 0], xyz[..., 1], xyz[..., 2]
+        cloud["intensity"] = np.where(in_band, intensity, np.nan)
+        cloud["ring"] = self._rings
+        return cloud, measured.shape[0], measured.shape[1], False

@@ -1,0 +1,41 @@
+"""kobuki_gazebo_plugins (``libgazebo_ros_kobuki.so``): a differential drive with the Kobuki's topics under the model's
+name (as turtlebot_gazebo has them), its gyro, bumpers and cliff sensors (sensors.kobuki)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.sensors.kobuki import KOBUKI_CLIFF_THRESHOLD
+from turtle_sim_ode.world.diff_drive import DiffDriveParams
+from turtle_sim_ode.world.plugins.diff_drive import DriveConfig
+from turtle_sim_ode.world.plugins.tags import flag, number, text
+
+KOBUKI = "libgazebo_ros_kobuki.so"
+MODEL_PLUGINS = (KOBUKI,)
+
+
+@dataclass
+class KobukiConfig(DriveConfig):
+    cliff_threshold: float = KOBUKI_CLIFF_THRESHOLD  # the Kobuki's cliff sensors (m to the floor)
+
+
+def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> KobukiConfig:
+    """The Kobuki's tags; ``overrides`` are the node's ~diff_drive parameters."""
+    return KobukiConfig(
+        filename=plugin.filename,
+        left_joint=text(plugin, "left_wheel_joint_name", "wheel_left_joint"),
+        right_joint=text(plugin, "right_wheel_joint_name", "wheel_right_joint"),
+        params=DiffDriveParams.from_kobuki_plugin(plugin.params, **overrides),
+        command_topic=model_name + "/commands/velocity",
+        reset_topic=model_name + "/commands/reset_odometry",
+        odometry_topic="odom",
+        odometry_frame="",
+        base_frame="",
+        odometry_source="encoder",
+        publish_tf=flag(plugin, "publish_tf", True),
+        publish_joint_states=True,
+        update_rate=0.0,
+        robot_namespace=text(plugin, "robotNamespace", ""),
+        cliff_threshold=number(plugin, "cliff_detection_threshold", KOBUKI_CLIFF_THRESHOLD, minimum=1e-6),
+    )

@@ -1,0 +1,48 @@
+"""gazebo_ros_p3d (``libgazebo_ros_p3d.so``): a body's pose and velocity from the physics state."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import List, Mapping, Optional, Tuple
+
+from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.world.plugins.tags import number, text, triple
+
+P3D = "libgazebo_ros_p3d.so"
+MODEL_PLUGINS = (P3D,)
+
+
+@dataclass
+class GroundTruthConfig:
+    """libgazebo_ros_p3d.so: a body's pose and velocity from the physics state, as nav_msgs/Odometry."""
+
+    body: str
+    topic: str
+    frame: str
+    update_rate: float
+    gaussian_noise: float
+    xyz_offset: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    rpy_offset: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    robot_namespace: str = ""
+
+
+def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> GroundTruthConfig:
+    body = text(plugin, "bodyName", "")
+    if not body:
+        raise ModelError(f"{plugin.filename} needs <bodyName>")
+    return GroundTruthConfig(
+        body=body,
+        topic=text(plugin, "topicName", "ground_truth"),
+        frame=text(plugin, "frameName", "world"),
+        update_rate=number(plugin, "updateRate", 0.0),
+        gaussian_noise=number(plugin, "gaussianNoise", 0.0),
+        xyz_offset=triple(plugin, "xyzOffsets" if "xyzOffsets" in plugin.params else "xyzOffset"),
+        rpy_offset=triple(plugin, "rpyOffsets" if "rpyOffsets" in plugin.params else "rpyOffset"),
+        robot_namespace=text(plugin, "robotNamespace", ""),
+    )
+
+
+def find_body(link_names: List[str], body: str) -> Optional[str]:
+    """p3d's bodyName may be scoped ('model::link'): the link it names, if the model has it."""
+    name = body.split("::")[-1]
+    return name if name in link_names else None

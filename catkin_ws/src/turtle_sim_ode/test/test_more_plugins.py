@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""The holonomic base of models/holonomic_bot.urdf through ROS: planar move on /cmd_vel and /odom
+(GazeboRosPlanarMove), the downward sonar's sensor_msgs/Range (GazeboRosRange), the block laser's
+sensor_msgs/PointCloud (GazeboRosBlockLaser), the hector GPS's NavSatFix (GazeboRosGps) a triggered camera's
+one frame a trigger (GazeboRosTriggeredCamera) and a stereo head's pairs (GazeboRosMultiCamera)."""
+import math
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from sensor_msgs.msg import CameraInfo, Image, NavSatFix, PointCloud, Range
+from std_msgs.msg import Empty
+
+WAIT = 90.0
+
+
+class MorePlugins(unittest.TestCase):
+    def test_1_sonar_reads_the_mast_height(self):
+        reading = rospy.wait_for_message("/sonar", Range, WAIT)
+        self.assertEqual((reading.header.frame_id, reading.radiation_type), ("mast", Range.ULTRASOUND))
+        self.assertAlmostEqual(reading.field_of_view, 0.1, places=6)
+        self.assertAlmostEqual(reading.range, 0.5, delta=0.03)  # the mast 0.5 m above the floor, looking down
+        self.assertAlmostEqual(reading.min_range, 0.02, places=6)  # float32
+        self.assertEqual(reading.max_range, 3.0)
+
+    def test_2_block_laser_cloud(self):
+        cloud = rospy.wait_for_message("/block_cloud", PointCloud, WAIT)
+        self.assertEqual(cloud.header.frame_id, "mast")
+        self.assertEqual((len(cloud.points), len(cloud.channels), len(cloud.channels[0].values)), (8, 1, 8))
+        for point in cloud.points:  # the floor, ~0.5 m along the sensor's x (pointing down)
+            self.assertAlmostEqual(point.x, 0.5, delta=0.05)
+
+    def test_3_gps_fix_near_the_reference(self):
+        fix = rospy.wait_for_message("/fix", NavSatFix, WAIT)
+        self.assertEqual(fix.header.frame_id, "base_footprint")
+        self.assertAlmostEqual(fix.latitude, 47.0, delta=1e-4)
+        self.assertAlmostEqual(fix.longitude, 8.5, delta=1e-4)
+        self.assertEqual(fix.position_covariance_type, NavSatFix.COVARIANCE_TYPE_DIAGONAL_KNOWN)
+
+    def test_5_triggered_camera_sends_a_frame_a_trigger(self):
+        images = []
+        rospy.Subscriber("/front/image_raw", Image, images.append)
+        trigger = rospy.Publisher("/front/image_trigger", Empty, queue_size=10)
+        began = rospy.get_time()
+        while rospy.get_time() - began < 1.0 and not rospy.is_shutdown():
+            rospy.sleep(0.1)  # sim time: untriggered, the camera sends nothing
+        self.assertEqual(images, [])
+        while trigger.get_num_connections() == 0 and not rospy.is_shutdown():
+            rospy.sleep(0.1)
+        trigger.publish(Empty())
+        began = rospy.get_time()
+        while rospy.get_time() - began < 2.0 and not rospy.is_shutdown():
+            rospy.sleep(0.1)
+        self.assertEqual(len(images), 1)
+        self.assertEqual((images[0].width, images[0].height, images[0].header.frame_id), (8, 6, "mast"))
+
+    def test_6_stereo_pairs_share_their_stamps(self):
+        left, right = [], []
+        rospy.Subscriber("/stereo/left/image_raw", Image, left.append)
+        rospy.Subscriber("/stereo/right/image_raw", Image, right.append)
+        info = rospy.wait_for_message("/stereo/right/camera_info", CameraInfo, WAIT)
+        self.assertAlmostEqual(info.P[3], -info.P[0] * 0.07, places=6)  # the right camera's baseline
+        began = rospy.get_time()
+        while rospy.get_time() - began < 1.0 and not rospy.is_shutdown():
+            rospy.sleep(0.1)
+        common = {m.header.stamp for m in left} & {m.header.stamp for m in right}
+        self.assertGreaterEqual(len(common), 5, "left and right frames with one stamp: %d" % len(common))
+
+    def test_4_planar_move_goes_sideways(self):
+        start = rospy.wait_for_message("/odom", Odometry, WAIT)
+        self.assertEqual((start.header.frame_id, start.child_frame_id), ("odom", "base_footprint"))
+        commands = rospy.Publisher("/cmd_vel", Twist, queue_size=1)
+        twist = Twist()
+        twist.linear.y = 0.5
+        began = rospy.get_time()
+        latest = start
+        while rospy.get_time() - began < 2.0 and not rospy.is_shutdown():
+            commands.publish(twist)
+            latest = rospy.wait_for_message("/odom", Odometry, WAIT)
+        commands.publish(Twist())
+        moved_y = latest.pose.pose.position.y - start.pose.pose.position.y
+        moved_x = latest.pose.pose.position.x - start.pose.pose.position.x
+        self.assertGreater(moved_y, 0.5, "odom y moved %.3f m" % moved_y)
+        self.assertLess(abs(moved_x), 0.05)
+        self.assertAlmostEqual(latest.twist.twist.linear.y, 0.5, delta=0.1)
+        self.assertLess(abs(math.atan2(latest.pose.pose.orientation.z, latest.pose.pose.orientation.w)), 0.02)
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_more_plugins")
+    rostest.rosrun("turtle_sim_ode", "more_plugins", MorePlugins)

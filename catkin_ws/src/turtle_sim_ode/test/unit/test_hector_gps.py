@@ -1,0 +1,70 @@
+"""libhector_gazebo_ros_gps.so: tags and defaults as GazeboRosGps::Load reads them, and Update's fix
+(hector_gazebo_plugins/src/gazebo_ros_gps.cpp): WGS84 radii at the reference latitude, latitude from the position
+turned by the reference heading, the world's <spherical_coordinates> with useWorldSphericalCoordinates."""
+from __future__ import annotations
+
+import math
+import random
+
+import pytest
+
+from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.world.plugins import read_plugins
+from turtle_sim_ode.world.plugins.hector_gps import HECTOR_GPS, HectorGps
+from turtle_sim_ode.world.simulation import Simulation
+
+POST_SDF = """<sdf version="1.6"><model name="post"><static>true</static><link name="gps_link">
+  <collision name="c"><geometry><box><size>0.1 0.1 0.1</size></box></geometry></collision></link></model></sdf>"""
+A, F = 6378137.0, 1.0 / 298.257223563  # WGS84, as the plugin's constants
+
+
+def radii(latitude_deg: float) -> tuple:
+    e2 = 2 * F - F * F
+    s = math.sin(math.radians(latitude_deg))
+    temp = 1.0 / (1.0 - e2 * s * s)
+    prime = A * math.sqrt(temp)
+    return prime * (1 - e2) * temp, prime * math.cos(math.radians(latitude_deg))
+
+
+def gps(params: dict, spherical=None) -> HectorGps:  # type: ignore[no-untyped-def]
+    sim = Simulation()
+    sim.spawn_sdf("post", POST_SDF, (100.0, 50.0, 2.0, 0, 0, 0))
+    (config,) = read_plugins("post", [GazeboPlugin(HECTOR_GPS, "gps", params)], {}, []).configs
+    return HectorGps(sim.models["post"], "gps_link", config, spherical, random.Random(1))
+
+
+def test_defaults() -> None:
+    (config,) = read_plugins("m", [GazeboPlugin(HECTOR_GPS, "gps", {})], {}, []).configs
+    # Load: /world, fix, fix_velocity, reference 49.9 N 8.9 E, heading 0, altitude 0; 4 Hz; status FIX.
+    assert (config.frame, config.fix_topic, config.velocity_topic) == ("/world", "fix", "fix_velocity")
+    assert (config.reference_latitude, config.reference_longitude, config.reference_heading) == (49.9, 8.9, 0.0)
+    assert (config.update_rate, config.status, config.service) == (4.0, 0, 0)
+
+
+def test_fix_of_a_post_100_m_north_50_m_west() -> None:
+    fix = gps({}).update(0.0)
+    north, east = radii(49.9)
+    assert fix.latitude == pytest.approx(49.9 + 100.0 / north * 180.0 / math.pi, abs=1e-12)
+    assert fix.longitude == pytest.approx(8.9 - 50.0 / east * 180.0 / math.pi, abs=1e-12)
+    assert fix.altitude == pytest.approx(2.0) and fix.velocity == pytest.approx((0.0, 0.0, 0.0))
+
+
+def test_world_spherical_coordinates_and_heading() -> None:
+    world = parse_sdf_world(
+        """<sdf version="1.6"><world name="w"><spherical_coordinates><latitude_deg>47.0</latitude_deg>
+        <longitude_deg>8.5</longitude_deg><elevation>400</elevation><heading_deg>90</heading_deg>
+        </spherical_coordinates></world></sdf>"""
+    )
+    assert world.spherical_coordinates == (47.0, 8.5, 400.0, 90.0)
+    fix = gps({"useWorldSphericalCoordinates": "true"}, world.spherical_coordinates).update(0.0)
+    north, east = radii(47.0)
+    # heading 90 deg counter-clockwise from east in SDF: 0 clockwise from north, as above.
+    assert fix.latitude == pytest.approx(47.0 + 100.0 / north * 180.0 / math.pi, abs=1e-9)
+    assert fix.longitude == pytest.approx(8.5 - 50.0 / east * 180.0 / math.pi, abs=1e-9)
+    assert fix.altitude == pytest.approx(402.0)
+
+
+def test_noise_gives_the_covariance() -> None:
+    fix = gps({"gaussianNoise": "0.5 0.5 1.0", "drift": "0.1 0.1 0.2"}).update(0.0)
+    assert fix.position_covariance[0] == pytest.approx(0.26) and fix.position_covariance[8] == pytest.approx(1.04)

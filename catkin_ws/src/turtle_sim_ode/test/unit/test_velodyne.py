@@ -1,0 +1,131 @@
+"""libgazebo_ros_velodyne_laser.so / _gpu_laser.so: tags as GazeboRosVelodyneLaser::Load (velodyne_gazebo_plugins
+1.0.12) reads them, a VLP-16's rays as Gazebo's MultiRayShape casts them (C kernel and numpy alike), and the cloud
+as OnScan lays it out."""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pytest
+
+from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.sensors.config import read_sdf_sensors
+from turtle_sim_ode.sensors.lidar import MultiBeamLidar
+from turtle_sim_ode.sensors.plugins.velodyne import VelodyneCloud, VelodyneConfig
+from turtle_sim_ode.world.simulation import Simulation
+
+# A VLP-16 as velodyne_description's VLP-16.urdf.xacro writes it (16 lasers, +-15 deg, range 0.3 .. 131 m), on a
+# static post 1 m above the ground.
+VLP16_SDF = """<sdf version="1.6"><model name="post"><static>true</static><link name="velodyne">
+  <pose>0 0 1.0 0 0 0</pose>
+  <collision name="c"><geometry><cylinder><radius>0.05</radius><length>0.07</length></cylinder></geometry></collision>
+  <sensor type="{kind}" name="velodyne-VLP16"><pose>0 0 0 0 0 0</pose><update_rate>10</update_rate>
+    <ray><scan>
+      <horizontal><samples>{samples}</samples><resolution>1</resolution><min_angle>-3.14159265</min_angle>
+        <max_angle>3.14159265</max_angle></horizontal>
+      <vertical><samples>16</samples><resolution>1</resolution><min_angle>-0.2617993877991494</min_angle>
+        <max_angle>0.2617993877991494</max_angle></vertical></scan>
+      <range><min>0.3</min><max>131</max><resolution>0.001</resolution></range>
+      <noise><type>gaussian</type><mean>0.0</mean><stddev>0.0</stddev></noise></ray>
+    <plugin name="gazebo_ros_laser_controller" filename="{filename}">
+      <topicName>/velodyne_points</topicName><frameName>velodyne</frameName>{extra}
+      <min_range>0.9</min_range><max_range>130.0</max_range><gaussianNoise>0.0</gaussianNoise></plugin>
+  </sensor></link></model></sdf>"""
+PILLAR_SDF = """<sdf version="1.6"><model name="pillar"><static>true</static><link name="link">
+  <collision name="c"><geometry><cylinder><radius>1.0</radius><length>4</length></cylinder></geometry></collision>
+  </link></model></sdf>"""
+LASER = "libgazebo_ros_velodyne_laser.so"
+
+
+def vlp16(samples: int = 1800, kind: str = "ray", filename: str = LASER, extra: str = "") -> str:
+    return VLP16_SDF.format(samples=samples, kind=kind, filename=filename, extra=extra)
+
+
+def test_tags_and_defaults() -> None:
+    (config,) = read_sdf_sensors(vlp16()).configs
+    assert isinstance(config, VelodyneConfig)
+    assert (config.samples, config.vertical_samples, config.range_min, config.range_max) == (1800, 16, 0.3, 131)
+    assert (config.topic, config.frame, config.min_range, config.max_range) == (
+        "/velodyne_points",
+        "velodyne",
+        0.9,
+        130,
+    )
+    assert config.update_rate == 10 and not config.organize_cloud
+    bare = vlp16().replace("<topicName>/velodyne_points</topicName><frameName>velodyne</frameName>", "")
+    bare = bare.replace("<min_range>0.9</min_range><max_range>130.0</max_range><gaussianNoise>0.0</gaussianNoise>", "")
+    (config,) = read_sdf_sensors(bare).configs
+    # Load's defaults: /points, frame /world, min_range 0, max_range infinity, no noise, robotNamespace "/".
+    assert (config.topic, config.frame, config.min_range, config.max_range) == ("/points", "/world", 0.0, math.inf)
+    assert (config.gaussian_noise, config.robot_namespace) == (0.0, "/")
+
+
+def test_the_gpu_plugin_needs_a_gpu_ray_sensor() -> None:
+    (config,) = read_sdf_sensors(vlp16(kind="gpu_ray", filename="libgazebo_ros_velodyne_gpu_laser.so")).configs
+    assert isinstance(config, VelodyneConfig)
+    blocks = read_sdf_sensors(vlp16(kind="ray", filename="libgazebo_ros_velodyne_gpu_laser.so"))
+    assert not blocks.configs and list(blocks.unsupported) == [
+        "libgazebo_ros_velodyne_gpu_laser.so (sensor 'velodyne-VLP16')"
+    ]
+
+
+def test_bad_tags_are_named() -> None:
+    with pytest.raises(ModelError, match="<organize_cloud> must be true or false"):
+        read_sdf_sensors(vlp16(extra="<organize_cloud>maybe</organize_cloud>"))
+    with pytest.raises(ModelError, match="more than 300000"):
+        read_sdf_sensors(vlp16(samples=20000))
+
+
+def scanner(samples: int = 1800, kernel: bool = True, extra: str = "") -> tuple:
+    sim = Simulation()
+    sim.spawn_sdf("post", vlp16(samples, extra=extra))
+    sim.spawn_sdf("pillar", PILLAR_SDF, (3.0, 1.0, 2.0, 0, 0, 0))
+    (config,) = sim.plugins["post"].configs
+    lidar = MultiBeamLidar(sim.physics, sim.models["post"], config, ray_kernel=kernel)
+    return lidar, VelodyneCloud(config, lidar.directions, np.random.default_rng(1))
+
+
+def test_points_lie_on_the_pillar_and_the_ground() -> None:
+    """The pillar's axis is at (3, 1) in the world, the sensor at (0, 0, 1): every point off the ground is 1.0 m
+    from the axis (+- 2 cm); every point below the sensor's plane that misses the pillar is on the ground."""
+    lidar, cloud = scanner()
+    assert lidar.uses_ray_kernel, "libturtle_sim_ode_rays.so not found: run scripts/build.sh"
+    points, height, width, dense = cloud.points(lidar.ranges())
+    assert height == 1 and width == len(points) and dense
+    xyz = np.stack((points["x"], points["y"], points["z"]), axis=1).astype(float)
+    world = xyz + (0.0, 0.0, 1.0)
+    on_ground = np.abs(world[:, 2]) < 0.02
+    off_axis = np.hypot(world[:, 0] - 3.0, world[:, 1] - 1.0)
+    assert np.all(np.abs(off_axis[~on_ground] - 1.0) < 0.02)
+    assert (~on_ground).sum() > 100 and on_ground.sum() > 1000
+    # Rings: j from the lowest laser up (Gazebo > 2), x = r cos p cos y etc.
+    assert set(np.unique(points["ring"])) <= set(range(16)) and np.all(points["time"] == 0)
+    elevation = np.arctan2(xyz[:, 2], np.hypot(xyz[:, 0], xyz[:, 1]))
+    expected = -math.radians(15) + points["ring"] * math.radians(2)
+    assert np.allclose(elevation, expected, atol=1e-4)
+    # The plugin's band: nothing at or within min_range 0.9, nor past max_range 130.
+    assert np.all(np.linalg.norm(xyz, axis=1) > 0.9)
+
+
+def test_numpy_rays_agree_with_the_kernel() -> None:
+    fast, _ = scanner(samples=180)
+    slow, _ = scanner(samples=180, kernel=False)
+    assert np.allclose(fast.ranges(), slow.ranges(), atol=1e-6)
+
+
+def test_organised_cloud_keeps_every_ray() -> None:
+    lidar, cloud = scanner(samples=360, extra="<organize_cloud>true</organize_cloud>")
+    points, height, width, dense = cloud.points(lidar.ranges())
+    assert (height, width, dense) == (360, 16, False) and points.shape == (360, 16)
+    assert np.all(points["ring"] == np.arange(16)) and np.isnan(points["x"]).any()
+
+
+def test_a_vlp16_scan_takes_a_few_milliseconds() -> None:
+    """16 x 1800 rays at 10 Hz: a scan must cost well under the 100 ms of sim time between scans."""
+    lidar, cloud = scanner()
+    lidar.ranges()
+    started = time.perf_counter()
+    for _ in range(5):
+        cloud.points(lidar.ranges())
+    assert (time.perf_counter() - started) / 5 < 0.05
