@@ -11,7 +11,7 @@
 
 Every ROS process runs against a master of its own on a free port and is stopped at the end, also on Ctrl-C, SIGTERM
 or error: SIGINT, then SIGKILL to its process group and to every process with its tag in the environment (roslaunch
-starts nodes in sessions of their own). Run with /usr/bin/python3 and the workspace sourced.
+starts nodes in sessions of their own). Without the workspace sourced it sources it itself (scripts/lib/workspace_env.py).
 """
 from __future__ import annotations
 
@@ -29,6 +29,9 @@ from typing import Any, Callable, Dict, Optional, Sequence
 # bench_probe (2-4), bench_peer (5), bench_camera and bench_node (6), bench_lidar (7), bench_report (targets, table),
 # bench_plan (run sizes).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from workspace_env import ensure_workspace_env  # noqa: E402
+
+ensure_workspace_env(__file__, sys.argv[1:])  # run as the README shows it, the workspace sourced or not
 from bench_camera import camera_cost  # noqa: E402
 from bench_lidar import lidar_cost  # noqa: E402
 from bench_node import camera_node, full_node, launch_to_first_odom, real_time  # noqa: E402

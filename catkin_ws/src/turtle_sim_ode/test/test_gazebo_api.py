@@ -387,9 +387,10 @@ class GazeboApi(unittest.TestCase):
         self.assertLess(self.get_world_properties().sim_time, 1.0)
 
     # --- lights ------------------------------------------------------------------------------------------------
-    def test_lights_are_refused_clearly(self):
-        self.refused(self.delete_light("sun"), "no lights")
-        self.refused(self.get_light_properties("sun"), "no lights")
+    def test_an_unknown_light_is_refused_clearly(self):
+        # no world file: no lights (gzserver_world.test in gazebo_ros has a world's lights)
+        self.refused(self.delete_light("sun"), "light 'sun' does not exist", "none")
+        self.refused(self.get_light_properties("sun"), "light 'sun' does not exist", "none")
 
 
 if __name__ == "__main__":

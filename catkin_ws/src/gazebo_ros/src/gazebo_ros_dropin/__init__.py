@@ -24,7 +24,7 @@ def display_problem(environ: Mapping[str, str], socket_dir: str = X11_SOCKET_DIR
     return None
 
 
-def unsupported_arg_notes(recording: bool, physics: str, extra_gazebo_args: str, enable_ros_network: bool) -> List[str]:
+def unsupported_arg_notes(recording: bool, physics: str, extra_gazebo_args: str) -> List[str]:
     """One warning per empty_world.launch arg set to something this simulator cannot do."""
     notes = []
     if recording:
@@ -32,9 +32,10 @@ def unsupported_arg_notes(recording: bool, physics: str, extra_gazebo_args: str,
     if physics.strip() != "ode":
         notes.append("physics:=%s: the engine is always ODE here" % physics.strip())
     if extra_gazebo_args.strip():
-        notes.append("extra_gazebo_args [%s] ignored: there is no gzserver" % extra_gazebo_args.strip())
-    if not enable_ros_network:
-        notes.append("enable_ros_network:=false: the /gazebo services and topics stay on (they are the only API here)")
+        notes.append(
+            "extra_gazebo_args [%s] ignored: this launch file starts the simulator without a gzserver command line "
+            "(rosrun gazebo_ros gzserver takes Gazebo's options)" % extra_gazebo_args.strip()
+        )
     return notes
 
 

@@ -40,16 +40,15 @@ def test_remote_display_is_taken_as_given(display: str, socket_dir: Path) -> Non
 
 
 def test_gazebo_defaults_have_no_notes() -> None:
-    assert unsupported_arg_notes(False, "ode", "", True) == []
+    assert unsupported_arg_notes(False, "ode", "") == []
 
 
 def test_each_unsupported_arg_is_named() -> None:
-    notes = unsupported_arg_notes(True, "bullet", " --lockstep ", False)
-    assert len(notes) == 4
+    notes = unsupported_arg_notes(True, "bullet", " --lockstep ")
+    assert len(notes) == 3
     assert notes[0].startswith("recording:=true")
     assert notes[1] == "physics:=bullet: the engine is always ODE here"
-    assert notes[2] == "extra_gazebo_args [--lockstep] ignored: there is no gzserver"
-    assert notes[3].startswith("enable_ros_network:=false")
+    assert notes[2].startswith("extra_gazebo_args [--lockstep] ignored: ")
 
 
 @pytest.mark.parametrize("text,value", [("true", True), ("True", True), ("1", True), ("false", False), ("0", False)])

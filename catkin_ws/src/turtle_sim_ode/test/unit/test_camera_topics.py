@@ -154,3 +154,67 @@ def test_camera_info_carries_the_plugins_baseline_distortion_and_lens_tags_as_ga
         read_sensors(WAFFLE.replace("<hackBaseline>0.07", "<hackBaseline>0")).cameras[0], "o", 79.5, 59.5
     )
     assert plain.P[3] == 0.0 and list(plain.D) == [0.0] * 5 and plain.K[2] == 79.5
+
+
+# <image><format> -> (encoding, bytes a pixel): gazebo_plugins/src/gazebo_ros_camera_utils.cpp,
+# GazeboRosCameraUtils::Init (type_ and skip_); an unknown format is published as bgr8 there.
+FORMATS = [
+    ("R8G8B8", "rgb8", 3),
+    ("RGB_INT8", "rgb8", 3),
+    ("B8G8R8", "bgr8", 3),
+    ("BGR_INT8", "bgr8", 3),
+    ("L8", "mono8", 1),
+    ("L_INT8", "mono8", 1),
+    ("L16", "mono16", 2),
+    ("L_INT16", "mono16", 2),
+    ("R16G16B16", "rgb16", 6),
+    ("RGB_INT16", "rgb16", 6),
+    ("BAYER_RGGB8", "bayer_rggb8", 1),
+    ("BAYER_BGGR8", "bayer_bggr8", 1),
+    ("BAYER_GBRG8", "bayer_gbrg8", 1),
+    ("BAYER_GRBG8", "bayer_grbg8", 1),
+    ("FLOAT32", "bgr8", 3),
+]
+
+
+@pytest.mark.parametrize("image_format, encoding, size", FORMATS)
+def test_every_format_gazebo_ros_knows_is_published_in_its_encoding(publisher, image_format, encoding, size) -> None:
+    camera_publisher, camera = publisher
+    camera.config = dataclasses.replace(camera.config, image_format=image_format)
+    camera_publisher = camera_topics.CameraPublisher(camera, camera_publisher._scene, "robot")
+    FakePublisher.made["robot/cam/ir/image_raw"].connections = 1
+    camera_publisher.publish(rospy.Time(3, 5), 3.0)
+    image: Image = FakePublisher.made["robot/cam/ir/image_raw"].messages[0]
+    assert (image.encoding, image.step, len(image.data), image.is_bigendian) == (encoding, 64 * size, 64 * 48 * size, 0)
+
+
+def channel(rgb: np.ndarray, encoding: str) -> np.ndarray:
+    return camera_topics.colour_image(rgb, encoding)
+
+
+def test_sixteen_bit_encodings_scale_255_to_65535_little_endian() -> None:
+    rgb = np.array([[[255, 0, 128]]], dtype=np.uint8)
+    assert channel(rgb, "rgb16").tobytes() == struct.pack("<3H", 65535, 0, 128 * 257)
+    assert channel(np.full((1, 1, 3), 255, np.uint8), "mono16").tobytes() == struct.pack("<H", 65535)
+    assert channel(np.full((1, 1, 3), 200, np.uint8), "mono8").tobytes() == bytes([200])
+
+
+# At (row % 2, column % 2): the channel gazebo-classic's Camera::ConvertRGBToBAYER (gazebo/rendering/Camera.cc) takes
+# from the R8G8B8 rendering for each format (its loops: i the column, j the row).
+@pytest.mark.parametrize(
+    "encoding, layout",
+    [
+        ("bayer_rggb8", ("RG", "GB")),
+        ("bayer_bggr8", ("BG", "GR")),
+        ("bayer_gbrg8", ("GR", "BG")),
+        ("bayer_grbg8", ("GB", "RG")),
+    ],
+)
+def test_bayer_mosaics_sample_the_channels_as_gazebo_does(encoding, layout) -> None:
+    rgb = np.zeros((4, 6, 3), dtype=np.uint8)
+    rgb[:, :, 0], rgb[:, :, 1], rgb[:, :, 2] = 10, 20, 30  # R, G, B
+    mosaic = channel(rgb, encoding)
+    value = {"R": 10, "G": 20, "B": 30}
+    for row in range(4):
+        for column in range(6):
+            assert mosaic[row, column] == value[layout[row % 2][column % 2]], (row, column)

@@ -46,3 +46,81 @@ def test_joint_states_carry_their_frame_id():
     message = JointState()
     message.deserialize(packed)
     assert (message.header.frame_id, message.name, list(message.position)) == ("tb3_0/base_link", ["a", "b"], [1, 2])
+
+
+@pytest.mark.parametrize(
+    "params, namespace, expected",
+    [
+        ({}, "/robot1", ""),
+        ({"/robot1/tf_prefix": "tb3_0"}, "/robot1", "tb3_0"),
+        ({"/robot1/tf_prefix": "tb3_0"}, "robot1/", "tb3_0"),
+        ({"/tf_prefix": "fleet"}, "/robot1", ""),  # not searched upwards
+        ({"/tf_prefix": "fleet"}, "", "fleet"),
+    ],
+)
+def test_p3d_and_bumper_read_their_own_namespaces_tf_prefix(monkeypatch, params, namespace, expected):
+    """gazebo_ros_p3d.cpp and gazebo_ros_bumper.cpp, Load: ros::NodeHandle(robotNamespace).getParam("tf_prefix")."""
+    monkeypatch.setattr(plugin_topics.rospy, "get_param", lambda key, default: params.get(key, default))
+    assert plugin_topics.own_tf_prefix(namespace) == expected
+
+
+class Capture:
+    """A publisher of either kind (packed or genpy) that keeps what is published, as genpy messages."""
+
+    def __init__(self, topic, data_class, *args, **kwargs):
+        self.data_class, self.messages = data_class, []
+
+    def get_num_connections(self):
+        return 1
+
+    def publish(self, message, *fields):
+        if fields:  # packed: a pack function and its fields
+            packed, message = message(1, *fields), self.data_class()
+            message.deserialize(ros_wire.joined(packed))
+        self.messages.append(message)
+
+    def unregister(self):
+        pass
+
+
+P3D_AND_BUMPER = """<robot name="bot">
+  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>
+    </inertial><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+  <gazebo><plugin name="truth" filename="libgazebo_ros_p3d.so"><bodyName>base</bodyName>
+    <topicName>truth</topicName><frameName>{p3d_frame}</frameName></plugin></gazebo>
+  <gazebo reference="base"><sensor name="bumper" type="contact"><contact><collision>base_collision</collision>
+    </contact><plugin name="b" filename="libgazebo_ros_bumper.so"><bumperTopicName>bumps</bumperTopicName>
+    <frameName>{bumper_frame}</frameName></plugin></sensor></gazebo>
+</robot>"""
+
+
+@pytest.mark.parametrize(
+    "p3d_frame, bumper_frame, expected_p3d, expected_bumper",
+    [
+        ("world", "base", "tb3_0/world", "tb3_0/base"),  # gazebo_ros_p3d: tf::resolve(prefix, frameName)
+        ("/map", "/base", "map", "base"),  # a leading slash: the frame as it is (tf::resolve)
+    ],
+)
+def test_p3d_and_bumper_frames_take_the_namespaces_tf_prefix(
+    monkeypatch, p3d_frame, bumper_frame, expected_p3d, expected_bumper
+):
+    from nav_msgs.msg import Odometry  # noqa: F401 (the p3d's type, deserialised by Capture)
+
+    from turtle_sim_ode.ros import periodic
+    from turtle_sim_ode.ros.plugins import model_interfaces
+    from turtle_sim_ode.ros.settings import SimulatorSettings
+    from turtle_sim_ode.world.simulation import Simulation
+
+    monkeypatch.setattr(periodic, "PackedPublisher", Capture)
+    monkeypatch.setattr(periodic.rospy, "Publisher", Capture)
+    params = {"/ns/tf_prefix": "tb3_0"}
+    monkeypatch.setattr(plugin_topics.rospy, "get_param", lambda key, default=None: params.get(key, default))
+    sim = Simulation()
+    sim.spawn_urdf("bot", P3D_AND_BUMPER.format(p3d_frame=p3d_frame, bumper_frame=bumper_frame), (0, 0, 0.1, 0, 0, 0))
+    interfaces = model_interfaces("bot", sim, SimulatorSettings(), None, "/ns", lambda topic, kind: None)
+    frames = {}
+    for interface in interfaces:
+        interface.publish(plugin_topics.rospy.Time(1, 0), 1.0)
+        for capture in [value for value in vars(interface).values() if isinstance(value, Capture)]:
+            frames[capture.data_class.__name__] = capture.messages[0].header.frame_id
+    assert frames == {"Odometry": expected_p3d, "ContactsState": expected_bumper}

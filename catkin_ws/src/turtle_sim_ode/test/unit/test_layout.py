@@ -18,7 +18,7 @@ SOURCE = PACKAGE_ROOT / "src" / "turtle_sim_ode"
 # none of them, and any may use it.
 HELPERS = "analysis"
 LAYERS = ("physics", "models", "sensors", "world", "ros")
-ROS_MODULES = ("rospy", "genpy", "rosgraph", "rospkg", "tf2_ros")
+ROS_MODULES = ("rospy", "genpy", "rosgraph", "rospkg", "tf2_ros", "dynamic_reconfigure")
 MAX_MODULE_LINES = 700
 
 

@@ -7,8 +7,10 @@ An <include> inside an included model is not supported (sdf refuses it), but inc
 depth limit, so that a self-include or a cycle is refused as such and supporting nested includes later cannot loop."""
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import List, Optional, Sequence, Set, Tuple
 
+from turtle_sim_ode.models.lights import SUN, Light, parse_light
 from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.sdf import NEWEST_VERSION, Include, World, WorldModel, parse_included_model
 from turtle_sim_ode.models.text import ModelError, parse_xml
@@ -96,3 +98,18 @@ def resolve_includes(world: World, paths: ResourcePaths) -> Tuple[List[WorldMode
         pose = include.pose if include.pose != Pose() else own_pose
         models.append(WorldModel(model.name, pose, model, folder))
     return models, left
+
+
+def sun_lights(world: World, paths: ResourcePaths) -> List[Light]:
+    """The world's lights with model://sun as the model path has it (the first <light> of its SDF file, under the
+    include's name) where a sun model is on the path; else with the built-in sun (gazebo_models' values)."""
+    if not world.sun or paths.model_folder("sun") is None:
+        return list(world.lights)
+    _, text = model_file(paths, "sun")
+    element = parse_xml(text, "model://sun").find("light")
+    if element is None:
+        raise ModelError("model://sun: its SDF file has no <light>")
+    found = parse_light(element)
+    return [
+        replace(found, name=light.name) if replace(light, name=SUN.name) == SUN else light for light in world.lights
+    ]

@@ -22,6 +22,8 @@ from turtle_sim_ode.models.builder import (
     quat_rotate,
     rpy_of,
 )
+from turtle_sim_ode.models.lights import SUN, Light, parse_light
+from turtle_sim_ode.models.world_state import WorldState, parse_world_state
 from turtle_sim_ode.models.materials import RGB, rgb_of, sdf_visual_color
 from turtle_sim_ode.models.nested import flatten_nested_models, read_pose
 from turtle_sim_ode.models.text import (
@@ -180,8 +182,9 @@ class World:
     # model://ground_plane (or an inline "ground_plane" model): the physics ground at z=0.
     ground_plane: bool = False
     sun: bool = False
-    # For the cameras: the first directional <light>'s <direction>, and <scene><background>; None: Gazebo's defaults.
-    light_direction: Optional[Vec3] = None
+    # The world's <light>s in order (model://sun is models.lights.SUN); <scene><background> (None: Gazebo's).
+    lights: List[Light] = field(default_factory=list)
+    state: Optional[WorldState] = None  # the first <state> (see models.world_state)
     background: Optional[RGB] = None
     # <spherical_coordinates>: latitude_deg, longitude_deg, elevation, heading_deg (None: Gazebo's zeros).
     spherical_coordinates: Optional[Tuple[float, float, float, float]] = None
@@ -612,15 +615,6 @@ def _parse_physics(world: Element, warnings: List[str]) -> SdfPhysics:
     )
 
 
-def _vec3_text(text: Optional[str], what: str) -> Optional[Vec3]:
-    if text is None:
-        return None
-    values = [read_number(value, what) for value in text.split()]
-    if len(values) != 3:
-        raise ModelError(f"{what} must be 3 numbers, got '{text}'")
-    return (values[0], values[1], values[2])
-
-
 def parse_sdf_world(text: str) -> World:
     """Parse ``<sdf version><world>``: physics, inline models, includes (not opened), plugins."""
     root = parse_xml(text, "SDF")
@@ -652,6 +646,7 @@ def parse_sdf_world(text: str) -> World:
                 world.ground_plane = True
             elif uri == SUN_URI:
                 world.sun = True
+                world.lights.append(replace(SUN, name=child_text(child, "name") or SUN.name))
             else:
                 name = child_text(child, "name")
                 if name is not None:
@@ -669,9 +664,11 @@ def parse_sdf_world(text: str) -> World:
                 )
         elif child.tag == "plugin":
             world.plugins.append(_plugin(child, "<world>"))
-        elif child.tag == "light" and child.get("type") == "directional" and world.light_direction is None:
-            direction = _vec3_text(child_text(child, "direction"), "<light> <direction>")
-            world.light_direction = direction if direction is not None and any(direction) else None
+        elif child.tag == "light":
+            world.lights.append(parse_light(child))
+        elif child.tag == "state":
+            if world.state is None:
+                world.state = parse_world_state(element)
         elif child.tag == "scene":
             world.background = rgb_of(child_text(child, "background")) or world.background
         elif child.tag == "spherical_coordinates":

@@ -376,6 +376,10 @@ class PhysicsWorld:
         self._steps = 0
         seed_ode_random()
 
+    def set_time(self, sim_time: float) -> None:
+        """Continue from ``sim_time`` (a world file's saved <state>)."""
+        self._time_base, self._steps = float(sim_time), 0
+
     # --- settings ------------------------------------------------------------------
     def set_params(self, params: PhysicsParams) -> None:
         """Switch to new settings between steps (ValueError if invalid, nothing changed).

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import struct
 from io import BytesIO
-from typing import Any, Callable, Dict, Optional
+from typing import Any, Callable, Dict, Optional, Tuple
 
 import numpy as np
 import rospy
@@ -70,12 +70,26 @@ def packer(message: Any) -> Callable[..., Packed]:
     return pack
 
 
+# Bytes a pixel of each encoding a camera publishes.
+BYTES_PER_PIXEL = {"mono8": 1, "mono16": 2, "rgb8": 3, "bgr8": 3, "rgb16": 6}
+# Which RGB channel (0 red, 1 green, 2 blue) each Bayer encoding takes at (row % 2, column % 2): gazebo-classic's
+# Camera::ConvertRGBToBAYER (gazebo/rendering/Camera.cc), whose GBRG8 and GRBG8 branches take
+# G R / B G and G B / R G respectively.
+BAYER_CHANNELS = {
+    "bayer_rggb8": ((0, 1), (1, 2)),
+    "bayer_bggr8": ((2, 1), (1, 0)),
+    "bayer_gbrg8": ((1, 0), (2, 1)),
+    "bayer_grbg8": ((1, 2), (0, 1)),
+}
+BYTES_PER_PIXEL.update({encoding: 1 for encoding in BAYER_CHANNELS})
+
+
 def templates(sensor: CameraSensor) -> Dict[str, Any]:
     """The messages of a camera, but for stamps and data: image, info, and for a depth camera depth, depth_info
     and points."""
     config, frame = sensor.config, sensor.frame
     image = Image(encoding=config.encoding, height=config.height, width=config.width)
-    image.step = config.width * (1 if config.encoding == "mono8" else 3)
+    image.step = config.width * BYTES_PER_PIXEL[config.encoding]
     found = {"image": image, "info": camera_info(config, frame, sensor.cx, sensor.cy)}
     if config.depth:
         found["depth"] = Image(encoding="32FC1", height=config.height, width=config.width, step=4 * config.width)
@@ -89,24 +103,49 @@ def templates(sensor: CameraSensor) -> Dict[str, Any]:
 
 
 def colour_image(rgb: np.ndarray, encoding: str) -> np.ndarray:
-    """The image's pixels in ``encoding`` (rgb8, bgr8 or mono8)."""
+    """The image's pixels in ``encoding`` (one of sensors.plugins.camera.IMAGE_ENCODINGS' values) from 8-bit RGB:
+    16-bit channels little-endian (sensor_msgs/Image is_bigendian 0) with 255 as 65535; Bayer mosaics as
+    gazebo-classic's Camera::ConvertRGBToBAYER samples the RGB image."""
     if encoding == "bgr8":
         return rgb[:, :, ::-1]
-    if encoding == "mono8":
+    if encoding in ("mono8", "mono16"):
         grey = rgb.astype(np.float32) @ np.array([0.299, 0.587, 0.114], dtype=np.float32)
-        return (grey + 0.5).astype(np.uint8)
+        if encoding == "mono8":
+            return (grey + 0.5).astype(np.uint8)
+        return (grey * 257.0 + 0.5).astype("<u2")
+    if encoding == "rgb16":
+        return rgb.astype("<u2") * 257
+    if encoding in BAYER_CHANNELS:
+        return bayer(rgb, BAYER_CHANNELS[encoding])
     return rgb
+
+
+def bayer(rgb: np.ndarray, channels: Tuple[Tuple[int, int], Tuple[int, int]]) -> np.ndarray:
+    """One byte a pixel: the RGB channel ``channels[row % 2][column % 2]`` of each pixel."""
+    mosaic = np.empty(rgb.shape[:2], dtype=np.uint8)
+    for row in (0, 1):
+        for column in (0, 1):
+            mosaic[row::2, column::2] = rgb[row::2, column::2, channels[row][column]]
+    return mosaic
 
 
 class CameraPublisher(Periodic):
     """A camera or depth camera plugin's topics, under ``robotNamespace``/``cameraName`` as gazebo_ros has them."""
 
-    def __init__(self, sensor: CameraSensor, scene: Scene, namespace: str) -> None:
-        """``scene``: what the cameras see of the world's models (the simulation's)."""
+    def __init__(
+        self,
+        sensor: CameraSensor,
+        scene: Scene,
+        namespace: str,
+        sun: Optional[Callable[[], Optional[Tuple[float, float, float]]]] = None,
+    ) -> None:
+        """``scene``: what the cameras see of the world's models (the simulation's); ``sun``: the direction of the
+        world's directional light now (see CameraSensor.light_from), asked before each frame."""
         config = sensor.config
         super().__init__(1.0 / config.update_rate)
         self._sensor = sensor
         self._scene = scene
+        self._sun = sun
         prefix = topic_prefix(namespace or config.robot_namespace) + topic_prefix(config.camera_name)
 
         def topic(name: str) -> str:
@@ -137,6 +176,8 @@ class CameraPublisher(Periodic):
         image, depth, points = (self._heard(c) for c in (self._image, self._depth, self._points))
         if not (image or depth or points):
             return
+        if self._sun is not None:
+            self._sensor.light_from(self._sun())
         frame: Frame = self._sensor.render(self._scene)
         self.rendered += 1
         for warning in self._scene.take_warnings():

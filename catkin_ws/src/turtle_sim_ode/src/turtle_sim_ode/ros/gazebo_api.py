@@ -16,6 +16,7 @@ import rospy
 from gazebo_msgs import srv as gz
 from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates, ODEJointProperties, ODEPhysics
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
+from std_msgs.msg import ColorRGBA
 from std_srvs.srv import Empty, EmptyResponse
 
 from turtle_sim_ode.models.meshes import load_meshes, read_visual_meshes
@@ -24,6 +25,7 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.ros.names import legal_base_name, legal_name, shorten_names_in, shown
 from turtle_sim_ode.ros.pacing import pacing_problem
+from turtle_sim_ode.ros.physics_reconfigure import PhysicsReconfigure
 from turtle_sim_ode.ros.throttle import logwarn_every
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.values import WorldError
@@ -49,6 +51,10 @@ def quaternion_of(pose: Pose) -> Tuple[float, float, float, float]:
 
 def pose_msg(position: Sequence[float], quaternion: Sequence[float]) -> Pose:
     return Pose(Point(*position), Quaternion(*quaternion))
+
+
+def rgba(colour: ColorRGBA) -> Tuple[float, float, float, float]:
+    return (colour.r, colour.g, colour.b, colour.a)
 
 
 def twist_msg(linear: Sequence[float], angular: Sequence[float]) -> Twist:
@@ -103,14 +109,14 @@ class GazeboApi:
             ("clear_body_wrenches", gz.BodyRequest, self._clear_body_wrenches),
             ("apply_joint_effort", gz.ApplyJointEffort, self._apply_joint_effort),
             ("clear_joint_forces", gz.JointRequest, self._clear_joint_forces),
-            ("delete_light", gz.DeleteLight, self._no_lights),
-            ("get_light_properties", gz.GetLightProperties, self._no_lights),
-            ("set_light_properties", gz.SetLightProperties, self._no_lights),
+            ("delete_light", gz.DeleteLight, self._delete_light),
+            ("get_light_properties", gz.GetLightProperties, self._get_light_properties),
+            ("set_light_properties", gz.SetLightProperties, self._set_light_properties),
         ]
-        self._services = [
-            rospy.Service("~" + name, srv_type, self._answer(name, srv_type, handler, handler != self._spawn))
-            for name, srv_type, handler in services
-        ]
+        serve = {
+            name: self._answer(name, srv_type, handler, handler != self._spawn) for name, srv_type, handler in services
+        }
+        self._services = [rospy.Service("~" + name, srv_type, serve[name]) for name, srv_type, _ in services]
         self._services += [
             rospy.Service("~pause_physics", Empty, lambda _: self._empty(lambda: self._pause(True))),
             rospy.Service("~unpause_physics", Empty, lambda _: self._empty(lambda: self._pause(False))),
@@ -125,6 +131,8 @@ class GazeboApi:
         ]
         self.states_period = 1.0 / states_rate
         self.next_states_time = 0.0
+        # As gazebo_ros: offered once the physics services are (physicsReconfigureThread waits for them).
+        self.physics_reconfigure = PhysicsReconfigure(serve["get_physics_properties"], serve["set_physics_properties"])
 
     # --- plumbing -------------------------------------------------------------------------------------------
     def _answer(self, name: str, srv_type, handler, locked: bool = True):
@@ -159,11 +167,29 @@ class GazeboApi:
             action()
         return EmptyResponse()
 
-    @staticmethod
-    def _no_lights(request, response) -> None:
-        raise WorldError(
-            "light '%s' does not exist: the simulator has no lights (it does not render)" % request.light_name
+    # --- lights -------------------------------------------------------------------------------------------
+    def _get_light_properties(self, request, response) -> None:
+        light = self._sim.light_properties(request.light_name)
+        response.diffuse = ColorRGBA(*light.diffuse)
+        response.attenuation_constant = light.attenuation_constant
+        response.attenuation_linear = light.attenuation_linear
+        response.attenuation_quadratic = light.attenuation_quadratic
+
+    def _set_light_properties(self, request, response) -> None:
+        self._sim.set_light_properties(
+            request.light_name,
+            request.cast_shadows,
+            rgba(request.diffuse),
+            rgba(request.specular),
+            (request.attenuation_constant, request.attenuation_linear, request.attenuation_quadratic),
+            xyz(request.direction),
+            xyz(request.pose.position),
+            quaternion_of(request.pose),
         )
+
+    def _delete_light(self, request, response) -> None:
+        self._sim.delete_light(request.light_name)
+        response.status_message = "DeleteLight: %s successfully deleted" % request.light_name
 
     # --- models ---------------------------------------------------------------------------------------------
     def _spawn(self, request, response) -> None:

@@ -12,7 +12,7 @@ import os
 import signal
 import threading
 import time
-from typing import Dict, List, Optional
+from typing import Dict, List, Optional, Sequence
 
 import rospkg
 import rospy
@@ -61,7 +61,8 @@ class SimulatorNode:
         # shares one publisher per topic in a process, and the broadcaster's queue would make /tf queued again.
         self._clock_pub = PackedPublisher("/clock", Clock)
         self._clock_packer = ClockPacker()
-        self._tf = PackedPublisher("/tf", TFMessage)
+        # Advertised with the first model whose plugin publishes tf (Gazebo has no /tf publisher before).
+        self._tf: Optional[PackedPublisher] = None
         self.interfaces: Dict[str, List[Periodic]] = {}
         self.api: Optional[GazeboApi] = None
         self._step_service: Optional[rospy.Service] = None
@@ -75,7 +76,10 @@ class SimulatorNode:
 
     def advertise(self) -> None:
         """Offer the /gazebo services and topics: only once the world file and start-up model are in, so that
-        no client (spawn_model in a launch file) can put a model in first."""
+        no client (spawn_model in a launch file) can put a model in first; none with enable_ros_network false."""
+        if not self.settings.enable_ros_network:
+            rospy.loginfo("enable_ros_network is false: no /gazebo services and topics")
+            return
         self.api = GazeboApi(
             self.sim,
             self.lock,
@@ -87,7 +91,8 @@ class SimulatorNode:
             self.settings.pub_clock_frequency,
             self._on_time_change,
         )
-        self._step_service = rospy.Service("~step_simulation", StepSimulation, self._on_step_simulation)
+        if self.settings.step_simulation_service:
+            self._step_service = rospy.Service("~step_simulation", StepSimulation, self._on_step_simulation)
 
     # --- models -------------------------------------------------------------------------------------------
     def add_interface(self, name: str, robot_namespace: str, check_topic: Optional[TopicCheck] = None) -> None:
@@ -103,6 +108,10 @@ class SimulatorNode:
             )
         if check_topic is None:
             check_topic = TopicTypes(name, known_topic_types())
+        plugins = self.sim.plugins.get(name)
+        publishes_tf = plugins is not None and any(broadcasts_tf(drive) for drive in plugins.drives)
+        if self._tf is None and self.settings.publish_tf and publishes_tf:
+            self._tf = PackedPublisher("/tf", TFMessage)
         interfaces = model_interfaces(name, self.sim, self.settings, self._tf, robot_namespace, check_topic)
         self.interfaces[name] = interfaces
         for interface in interfaces:
@@ -261,6 +270,12 @@ class SimulatorNode:
             interface.close()
 
 
+def broadcasts_tf(drive) -> bool:  # type: ignore[no-untyped-def]
+    """Whether a drive plugin's config asks for odometry on /tf (diff drive and Kobuki: publishTf/publish_tf,
+    skid steer: broadcastTF)."""
+    return bool(getattr(drive, "publish_tf", False) or getattr(drive, "broadcast_tf", False))
+
+
 def release_memory() -> None:
     """Hand freed heap back to the system after a model is deleted: glibc keeps the memory of a large model's many
     small objects (ODE ray geoms) otherwise, ~300 MB for 800,000 rays."""
@@ -315,17 +330,26 @@ def load_world(node: SimulatorNode, world_name: str) -> None:
         node.sim.max_update_rate = node.settings.real_time_factor / node.sim.physics.time_step
         for model in world.models:
             node.add_interface(model.name, "")
+        node._restart_time()  # a world's <state> may start sim time elsewhere than 0
     if warnings:  # one line, at most MAX_SHOWN_WARNINGS of them
         rospy.logwarn("world %s: %s", path, "; ".join(summarise(warnings)))
     rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, [m.name for m in world.models])
 
 
-def main() -> int:
+def main(overrides: Optional[Dict[str, object]] = None, notes: Sequence[str] = (), claim_sim_time: bool = False) -> int:
+    """Run node `gazebo`. ``overrides``: private parameters that win over the parameter server's (gazebo_ros's
+    gzserver command line); ``notes``: warnings to log once the node is up (options without effect here);
+    ``claim_sim_time``: set /use_sim_time true unless it is set, as gazebo_ros's API plugin does (launch files
+    of this package set it themselves)."""
     # rospy's own SIGINT handler shuts rospy down inside whatever the main thread is doing; in the middle of a
     # publish it can deadlock on the publisher's lock (seen flat out). Here a signal only asks the loop to stop.
     rospy.init_node("gazebo", disable_signals=True)
+    for note in notes:
+        rospy.logwarn(note)
+    if claim_sim_time and not rospy.has_param("/use_sim_time"):
+        rospy.set_param("/use_sim_time", True)
     try:
-        settings = settings_from_params(rospy.get_param("~", {}))
+        settings = settings_from_params(dict(rospy.get_param("~", {}), **(overrides or {})))
     except SettingsError as error:
         rospy.logfatal(str(error))
         return 1

@@ -82,6 +82,13 @@ def tf_prefix(namespace: str, otherwise: Optional[str] = None) -> str:
     return namespace.rstrip("/") if otherwise is None else otherwise
 
 
+def own_tf_prefix(namespace: str) -> str:
+    """The ``tf_prefix`` parameter of ``namespace`` itself (no search upwards), else "": what gazebo_ros_p3d and
+    gazebo_ros_bumper read (ros::NodeHandle(robotNamespace).getParam("tf_prefix"))."""
+    key = "/" + "/".join([part for part in namespace.strip("/").split("/") if part] + ["tf_prefix"])
+    return str(rospy.get_param(key, ""))
+
+
 def resolve_frame(prefix: str, frame: str) -> str:
     """tf::resolve: a frame with a leading slash as it is (without the slash), else under ``prefix``."""
     if frame.startswith("/"):

@@ -60,6 +60,11 @@ class SimulatorSettings:
     odom_frame: str = "odom"
     base_frame: str = "base_footprint"
     publish_tf: bool = True
+    # gazebo_ros's ~enable_ros_network: false offers none of the /gazebo services and topics (/clock and the
+    # plugins' topics stay).
+    enable_ros_network: bool = True
+    # /gazebo/step_simulation (turtle_sim_ode_msgs/StepSimulation): not part of Gazebo's API, so off unless asked.
+    step_simulation_service: bool = False
     ground_truth_topic: str = "ground_truth/odom"
     ground_truth_frame: str = "world"
     # A model spawned at start-up from a URDF parameter (none when spawn_model_name is empty).
@@ -157,6 +162,8 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
         publish_rate=number_param(params, "publish_rate", defaults.publish_rate, 0.0, True),
         model_states_rate=number_param(params, "model_states_rate", defaults.model_states_rate, 0.0, True),
         publish_tf=typed_param(params, "publish_tf", defaults.publish_tf, bool),
+        enable_ros_network=typed_param(params, "enable_ros_network", defaults.enable_ros_network, bool),
+        step_simulation_service=typed_param(params, "step_simulation_service", defaults.step_simulation_service, bool),
         spawn_pose=tuple(
             number_param(params, "spawn_" + axis, 0.0, -limit, maximum=limit) for axis, limit in SPAWN_AXES
         ),

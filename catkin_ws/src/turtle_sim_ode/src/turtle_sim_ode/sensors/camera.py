@@ -75,8 +75,7 @@ class CameraSensor:
         v = (np.arange(height) - self.cy) / self.focal_length  # y / z of each row
         self._u, self._v = u, v
         self._sky = sky if sky is not None else SKY_COLOR
-        light = -np.asarray(sun_direction if sun_direction is not None else SUN_DIRECTION, dtype=float)
-        self._light = light / np.linalg.norm(light)
+        self.light_from(sun_direction)
         lib = ray_kernel_library() if ray_kernel else None
         self._caster = RayCaster(lib, width, height, threads) if lib is not None else None
         if self._caster is None:  # the numpy rays' directions (tens of MB for a full-HD camera: only if used)
@@ -87,6 +86,13 @@ class CameraSensor:
             norm = np.linalg.norm(optical, axis=2)
             self._optical_dirs = optical / norm[:, :, None]  # unit ray directions, optical frame
             self._depth_per_distance = 1.0 / norm  # optical z of a hit per metre along its ray
+
+    def light_from(self, sun_direction: Optional[Tuple[float, float, float]]) -> None:
+        """Shade with this directional light from now on: None is Gazebo's default sun, (0, 0, 0) no sun (ambient
+        light only)."""
+        light = -np.asarray(sun_direction if sun_direction is not None else SUN_DIRECTION, dtype=float)
+        norm = np.linalg.norm(light)
+        self._light = light / norm if norm > 0 else np.zeros(3)
 
     @property
     def uses_ray_kernel(self) -> bool:

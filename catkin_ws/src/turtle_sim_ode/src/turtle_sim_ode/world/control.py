@@ -32,6 +32,7 @@ from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsWorld
 from turtle_sim_ode.world.plugins import DriveRobot
+from turtle_sim_ode.world.joint_effort import effort_applier
 from turtle_sim_ode.world.records import (
     JointProperties,
     LinkProperties,
@@ -243,9 +244,12 @@ class WorldControl:
         linear: Sequence[float],
         angular: Sequence[float],
         reference_frame: str,
+        moving_frame: bool = True,
     ) -> Tuple[Transform, Vec3, Vec3]:
         """Validated world pose and twist from ones relative to ``reference_frame`` (the
-        inverse of ``_relative``); the position must be within MAX_LENGTH of the world origin."""
+        inverse of ``_relative``); the position must be within MAX_LENGTH of the world origin.
+        ``moving_frame`` False: the twist is only turned into world axes, the frame's own velocity
+        is not added (gazebo_ros's setModelState)."""
         pose: Transform = (vec3(position, "position", MAX_LENGTH), orientation(quaternion, "orientation"))
         velocity = vec3(linear, "linear velocity", MAX_SPEED)
         spin = vec3(angular, "angular velocity", MAX_SPEED)
@@ -253,8 +257,10 @@ class WorldControl:
         if frame is not None:
             frame_pose, frame_linear, frame_angular = frame
             pose = compose(frame_pose, pose)
-            velocity = _add(quat_rotate(frame_pose[1], velocity), frame_linear)
-            spin = _add(quat_rotate(frame_pose[1], spin), frame_angular)
+            velocity = quat_rotate(frame_pose[1], velocity)
+            spin = quat_rotate(frame_pose[1], spin)
+            if moving_frame:
+                velocity, spin = _add(velocity, frame_linear), _add(spin, frame_angular)
             vec3(pose[0], f"position relative to the world (from '{reference_frame}')", MAX_LENGTH)
         return pose, velocity, spin
 
@@ -276,9 +282,11 @@ class WorldControl:
     ) -> None:
         """Teleport the model frame; every body then moves with the model as one rigid body
         (``linear`` is its root link origin's velocity). Joints keep their positions; a static
-        model ignores the twist."""
+        model ignores the twist. Relative to a model or link, the pose is in that frame and the
+        twist in its axes, without the frame's own velocity (gazebo_ros_api_plugin.cpp,
+        setModelState: a model stepped relative to itself comes to rest at each step)."""
         model = self._model(name)
-        pose, linear, angular = self._absolute(position, quaternion, linear, angular, reference_frame)
+        pose, linear, angular = self._absolute(position, quaternion, linear, angular, reference_frame, False)
         model.set_transform(pose)
         _set_rigid_twist(model.bodies, model.link_transform(model.root_link)[0], linear, angular)
 
@@ -644,7 +652,8 @@ class WorldControl:
 
     def apply_joint_effort(self, joint: str, effort: float, start_time: float = 0.0, duration: float = -1.0) -> None:
         """Torque (revolute) or force (prismatic) along the joint axis, positive towards
-        increasing position, scheduled as ``apply_body_wrench``."""
+        increasing position, scheduled as ``apply_body_wrench``; held to the joint's velocity
+        and effort limits each step as Gazebo does (see world.joint_effort)."""
         model, handle = self._joint(joint)
         effort = finite(effort, "effort", MAX_FORCE)
         limit = sanity.effort_limit(handle.moved_inertia())
@@ -653,12 +662,9 @@ class WorldControl:
                 f"effort {effort:g} on joint '{joint}' must be at most {limit:.3g} in magnitude: it would accelerate "
                 f"what the joint moves beyond {sanity.MAX_JOINT_ACCELERATION:g} per s^2"
             )
-        limits = model.robot.joints[handle.name].limits
-        if limits is not None and limits.effort > 0:  # Gazebo truncates a joint's force to its effort limit
-            effort = max(-limits.effort, min(limits.effort, effort))
         start, end = self._schedule(start_time, duration)
-        add = handle.joint.addForce if handle.type == "prismatic" else handle.joint.addTorque
-        self.loads.append(Load("effort", model.name, handle.name, lambda: add(effort), start, end))
+        apply = effort_applier(handle, effort, model.robot.joints[handle.name].limits)  # the joint's limits
+        self.loads.append(Load("effort", model.name, handle.name, apply, start, end))
 
     def clear_joint_forces(self, joint: str) -> None:
         """Drop the efforts on this joint; an unscoped name clears that joint in every model

@@ -7,7 +7,8 @@ from dataclasses import dataclass
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from turtle_sim_ode.models.builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
-from turtle_sim_ode.models.includes import resolve_includes
+from turtle_sim_ode.models.includes import resolve_includes, sun_lights
+from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.models.meshes import load_meshes, uses_meshes
 from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.sdf import World, _rpy, parse_sdf_model
@@ -17,8 +18,10 @@ from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors
 from turtle_sim_ode.sensors.scene import Scene
 from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
+from turtle_sim_ode.world.lights import LightControl
 from turtle_sim_ode.world.plugins import DriveRobot, ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
+from turtle_sim_ode.world.world_state import apply_world_state
 from turtle_sim_ode.world.values import WorldError, update_rate, vector
 
 Pose6 = Tuple[float, float, float, float, float, float]
@@ -48,7 +51,7 @@ class _Spawned:
         return cls(model.model_transform(), link_poses, {name: handle.angle() for name, handle in model.joints.items()})
 
 
-class Simulation(WorldControl):
+class Simulation(WorldControl, LightControl):
     """Models by name in one physics world, stepped with their drives and scheduled loads."""
 
     def __init__(
@@ -71,8 +74,8 @@ class Simulation(WorldControl):
         self.loads: List[Load] = []
         self._drive_overrides = dict(drive_overrides or {})
         self._spawned: Dict[str, _Spawned] = {}
-        # The loaded world's sun direction and sky colour for the cameras (None: Gazebo's defaults).
-        self.light_direction: Optional[Vec3] = None
+        # The loaded world's lights by name (see world.lights) and sky colour for the cameras (None: Gazebo's).
+        self.lights: Dict[str, Light] = {}
         self.sky_colour: Optional[Tuple[float, float, float]] = None
         # The loaded world's <spherical_coordinates> (latitude_deg, longitude_deg, elevation, heading_deg); GPS plugins.
         self.spherical_coordinates: Optional[Tuple[float, float, float, float]] = None
@@ -200,9 +203,11 @@ class Simulation(WorldControl):
             rate = update_rate(sdf.real_time_update_rate, "world <real_time_update_rate>")
         elif sdf.real_time_factor is not None:
             rate = update_rate(sdf.real_time_factor, "world <real_time_factor>") / params.time_step
+        lights = world.lights if self.resources is None else sun_lights(world, self.resources)
         old_params, old_rate = self.physics.params, self.max_update_rate
         self.physics.set_params(params)
-        self.light_direction, self.sky_colour = world.light_direction, world.background
+        self.lights, self.sky_colour = {light.name: light for light in lights}, world.background
+        self.had_sun = self.light_direction is not None
         self.spherical_coordinates = world.spherical_coordinates
         self.max_update_rate = rate
         warnings = list(world.warnings)
@@ -222,9 +227,13 @@ class Simulation(WorldControl):
                 self.delete(name)
             self.physics.set_params(old_params)
             self.max_update_rate = old_rate
-            self.light_direction, self.sky_colour = None, None
+            self.lights, self.sky_colour, self.had_sun = {}, None, False
             self.spherical_coordinates = None
             raise
+        if world.state is not None:
+            warnings.extend(apply_world_state(world.state, self.physics, self.models, self.lights))
+            for robot in self.robots.values():  # odometry starts from the saved time and pose
+                robot.reset_odometry(self.sim_time)
         for include in includes:
             named = f" (model '{include.name}')" if include.name else ""
             warnings.append(f"cannot resolve {include.uri}{named}: not spawned")

@@ -11,7 +11,7 @@ import rospy
 from turtle_sim_ode.models.builder import BuiltModel
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, publisher
-from turtle_sim_ode.ros.plugin_topics import period
+from turtle_sim_ode.ros.plugin_topics import own_tf_prefix, period, resolve_frame
 from turtle_sim_ode.ros.wire import release
 from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
 from turtle_sim_ode.world.simulation import Simulation
@@ -30,7 +30,8 @@ class ContactsPublisher(Periodic):
         self._sim = sim
         self._physics: PhysicsWorld = sim.physics
         self._watch = self._physics.watch_contacts(model.geoms.get(config.link, []))
-        self._frame = config.frame
+        # gazebo_ros_bumper.cpp, Load: frameName through tf::resolve with the namespace's tf_prefix
+        self._frame = resolve_frame(own_tf_prefix(namespace or config.robot_namespace), config.frame)
         self._names: Dict[ode.GeomObject, str] = {}
 
     def _name(self, geom: ode.GeomObject) -> str:

@@ -19,8 +19,8 @@ from turtle_sim_ode.sensors.scene import Scene
 
 
 class TriggeredCameraPublisher(CameraPublisher):
-    def __init__(self, sensor: CameraSensor, scene: Scene, namespace: str) -> None:
-        super().__init__(sensor, scene, namespace)
+    def __init__(self, sensor: CameraSensor, scene: Scene, namespace: str, sun=None) -> None:
+        super().__init__(sensor, scene, namespace, sun)
         self._period = 0.0  # looks for a trigger at every step; renders only when triggered
         config = sensor.config
         self._lock = threading.Lock()
@@ -49,7 +49,8 @@ def interfaces(context: ModelContext, config: CameraConfig) -> List[Periodic]:
     sim = context.sim
     sensor = CameraSensor(sim.physics, context.model, config, sun_direction=sim.light_direction, sky=sim.sky_colour)
     kind = TriggeredCameraPublisher if config.triggered else CameraPublisher
-    return [kind(sensor, sim.scene, context.namespace)]
+    # the world's lights as the light services leave them, read at each frame
+    return [kind(sensor, sim.scene, context.namespace, lambda: sim.light_direction)]
 
 
 def multicamera_interfaces(context: ModelContext, config: MultiCameraConfig) -> List[Periodic]:

@@ -9,7 +9,7 @@ from nav_msgs.msg import Odometry
 
 from turtle_sim_ode.models.builder import BuiltModel, quat_from_rpy, quat_multiply
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, topic_prefix
-from turtle_sim_ode.ros.plugin_topics import Vec3, period, rotate_inverse
+from turtle_sim_ode.ros.plugin_topics import Vec3, own_tf_prefix, period, resolve_frame, rotate_inverse
 from turtle_sim_ode.ros.wire import OdometryPacker, release
 from turtle_sim_ode.world.plugins import GroundTruthConfig, find_body
 
@@ -51,7 +51,8 @@ class GroundTruthPublisher(Periodic):
             model,
             link,
             topic_prefix(namespace or config.robot_namespace) + config.topic,
-            config.frame,
+            # gazebo_ros_p3d.cpp, Load: the frame (not the body) through tf::resolve with the namespace's tf_prefix
+            resolve_frame(own_tf_prefix(namespace or config.robot_namespace), config.frame),
             config.update_rate,  # 0: every step, as gazebo_ros_p3d
             False,
             config.gaussian_noise,

@@ -15,9 +15,25 @@ TRIGGERED_CAMERA = "libgazebo_ros_triggered_camera.so"
 CAMERA_PLUGINS = ("libgazebo_ros_camera.so", TRIGGERED_CAMERA)
 DEPTH_PLUGINS = ("libgazebo_ros_openni_kinect.so", "libgazebo_ros_depth_camera.so")
 SENSOR_PLUGINS = {**{name: ("camera",) for name in CAMERA_PLUGINS}, **{name: ("depth",) for name in DEPTH_PLUGINS}}
-# <image><format> -> sensor_msgs encoding (gazebo_ros_camera_utils' names); the others fall back to rgb8.
-IMAGE_ENCODINGS = {"R8G8B8": "rgb8", "RGB_INT8": "rgb8", "B8G8R8": "bgr8", "BGR_INT8": "bgr8", "L8": "mono8"}
-IMAGE_ENCODINGS["L_INT8"] = "mono8"
+# <image><format> -> sensor_msgs encoding, as gazebo_ros_camera_utils.cpp (GazeboRosCameraUtils::Init) maps them;
+# any other format is published as bgr8 there (with an error), and here (with a warning).
+IMAGE_ENCODINGS = {
+    "L8": "mono8",
+    "L_INT8": "mono8",
+    "L16": "mono16",
+    "L_INT16": "mono16",
+    "R8G8B8": "rgb8",
+    "RGB_INT8": "rgb8",
+    "B8G8R8": "bgr8",
+    "BGR_INT8": "bgr8",
+    "R16G16B16": "rgb16",
+    "RGB_INT16": "rgb16",
+    "BAYER_RGGB8": "bayer_rggb8",
+    "BAYER_BGGR8": "bayer_bggr8",
+    "BAYER_GBRG8": "bayer_gbrg8",
+    "BAYER_GRBG8": "bayer_grbg8",
+}
+UNKNOWN_FORMAT_ENCODING = "bgr8"
 # A camera whose <sensor><update_rate> and plugin <updateRate> are both 0 (Gazebo: as fast as it renders).
 DEFAULT_CAMERA_RATE = 30.0
 
@@ -63,7 +79,7 @@ class CameraConfig:
 
     @property
     def encoding(self) -> str:
-        return IMAGE_ENCODINGS.get(self.image_format, "rgb8")
+        return IMAGE_ENCODINGS.get(self.image_format, UNKNOWN_FORMAT_ENCODING)
 
     @property
     def focal_length(self) -> float:
@@ -88,7 +104,10 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ca
         raise ModelError(f"{what} <horizontal_fov> must be in (0, pi), got {fov}")
     image_format = child_text(camera, "image/format") or defaults.image_format
     if image_format not in IMAGE_ENCODINGS:
-        warnings.append(f"{what}: image format {image_format} is not simulated: published as rgb8")
+        warnings.append(
+            f"{what}: image format {image_format} is not one gazebo_ros knows: published as "
+            f"{UNKNOWN_FORMAT_ENCODING}, as gazebo_ros does"
+        )
     near = number_at(camera, "clip/near", defaults.near, what)
     far = number_at(camera, "clip/far", defaults.far, what)
     if not 0.0 < near < far or not math.isfinite(far):
