@@ -11,6 +11,7 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 from bench_camera import CAMERAS, TARGET_SHARE
 from bench_camera import table as camera_table
 from bench_lidar import table as lidar_table
+from bench_control import table as control_table
 
 
 def debian_version(package: str) -> str:
@@ -261,6 +262,9 @@ def table(results: Dict[str, Any]) -> str:
         "7. lidar: 1 TurtleBot with a 3D lidar (libgazebo_ros_velodyne_laser.so) in the furnished room, no ROS",
         "lidar",
         lambda r: lidar_table(r).splitlines(),
+    )
+    section(
+        "8. ros_control: a 1 kHz controller manager (diff_drive + joint_state), no ROS", "ros_control", control_table
     )
     lines.append("targets")
     lines.append("   %-44s %10s  %-13s %s" % ("target", "value", "goal", "result"))

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Workspace drop-ins: packages that stand in for a system ROS package on systems that lack it.
 
-A drop-in is a workspace package whose package.xml exports <dropin/> (catkin_ws/src/xacro, gazebo_ros). Where a
+A drop-in is a workspace package whose package.xml exports <dropin/> (catkin_ws/src/xacro, gazebo_ros, controller_manager
+and the message packages control_msgs and controller_manager_msgs). Where a
 package of the same name is installed outside the workspace (<prefix>/share/<name>/package.xml, for the prefixes
 /opt/ros/noetic, /usr and those on CMAKE_PREFIX_PATH), the drop-in gets a CATKIN_IGNORE file: catkin_make,
 catkin-tools, rospack and rospkg all skip a folder holding one, so the system's package is the one found and

@@ -12,7 +12,7 @@ from conftest import ROS_PYTHON, ros_missing
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 BENCH = os.path.join(REPO, "scripts", "bench_sim.py")
 TIMEOUT_S = 600  # --quick takes about 90 s on 2 cores; a busy machine may take longer
-SECTIONS = ("physics_only", "full_node", "real_time", "launch", "cameras")
+SECTIONS = ("physics_only", "full_node", "real_time", "launch", "cameras", "ros_control")
 # 0 = unthrottled; linearity needs three robot counts, --quick has two ([] stands for any list index)
 MAY_BE_ZERO_OR_NONE = {
     "full_node.real_time_factor",

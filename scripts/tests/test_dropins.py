@@ -152,3 +152,31 @@ def test_resolver_installs_the_real_xacro_where_the_platform_has_it(platform):
         assert "python3-pip" in packages and not any("xacro" in p for p in packages)
     # gazebo_ros is never installed: on a system without Gazebo the drop-in is the one
     assert not any("gazebo-ros" in p for p in packages)
+
+
+ROS_CONTROL_DROPINS = ("control_msgs", "controller_manager", "controller_manager_msgs")
+
+
+def test_the_ros_control_message_packages_are_dropins(tmp_path):
+    """Debian 12 has no control_msgs, controller_manager or controller_manager_msgs; Ubuntu's ros-noetic-* ones win
+    where installed."""
+    src = tmp_path / "ws" / "src"
+    for name in ROS_CONTROL_DROPINS:
+        shutil.copytree(os.path.join(SRC, name), str(src / name), ignore=shutil.ignore_patterns("CATKIN_IGNORE"))
+    (tmp_path / "system" / "share").mkdir(parents=True)
+    assert sorted(apply(tmp_path).stdout.split()) == [str(src / name) for name in ROS_CONTROL_DROPINS]
+    install_system_package(tmp_path, "control_msgs")
+    assert apply(tmp_path).stdout.split() == [str(src / "controller_manager"), str(src / "controller_manager_msgs")]
+
+
+@pytest.mark.parametrize("platform", ["debian", "ubuntu"])
+def test_resolver_installs_the_real_ros_control_packages_where_the_platform_has_them(platform):
+    result = subprocess.run(
+        [sys.executable, os.path.join(REPO, "scripts", "lib", "resolve_deps.py"), "--platform", platform],
+        stdout=subprocess.PIPE,
+        universal_newlines=True,
+    )
+    packages = result.stdout.split()
+    for name in ROS_CONTROL_DROPINS:
+        real = "ros-noetic-" + name.replace("_", "-")
+        assert (real in packages) == (platform == "ubuntu")

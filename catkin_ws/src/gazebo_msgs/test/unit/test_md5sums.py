@@ -11,13 +11,16 @@ Where the expected values come from:
   headers, gennodejs/genlisp output, C# and Swift bindings, and `rosbag info` of a Noetic Gazebo recording).
   LinkStates and ModelStates share one md5sum upstream too: their fields are identical.
 """
-import os
 import re
+import sys
 from pathlib import Path
 
 import pytest
 
 PACKAGE_ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(PACKAGE_ROOT.parent / "workspace_testing" / "src"))
+from workspace_testing.msg_md5 import installed_msg_dir  # noqa: E402
+
 PACKAGE = "gazebo_msgs"
 DEPENDENCIES = ("std_msgs", "geometry_msgs", "sensor_msgs", "trajectory_msgs")
 
@@ -112,21 +115,10 @@ def package_files(kind):
 
 
 def dependency_msg_dir(package):
-    """The msg folder of an installed message package: through rospkg when a ROS environment is set, else the usual
-    install prefixes (Debian puts them in /usr/share, the ROS apt repository in /opt/ros/noetic/share)."""
-    candidates = []
     try:
-        import rospkg
-
-        candidates.append(Path(rospkg.RosPack().get_path(package)))
-    except Exception:  # rospkg missing, or the package is not on ROS_PACKAGE_PATH
-        pass
-    prefixes = [p for p in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep) if p]
-    candidates += [Path(p) / "share" / package for p in prefixes + ["/opt/ros/noetic", "/usr"]]
-    for candidate in candidates:
-        if (candidate / "msg").is_dir():
-            return str(candidate / "msg")
-    pytest.fail("cannot find the .msg files of %s (install its -dev package)" % package)
+        return installed_msg_dir(package)
+    except FileNotFoundError as error:
+        pytest.fail(str(error))
 
 
 def test_every_upstream_file_is_here_and_no_other():

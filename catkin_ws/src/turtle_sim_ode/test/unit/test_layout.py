@@ -17,7 +17,7 @@ SOURCE = PACKAGE_ROOT / "src" / "turtle_sim_ode"
 # Each layer may import from itself and from the layers before it; analysis (helpers for demos and tests) imports
 # none of them, and any may use it.
 HELPERS = "analysis"
-LAYERS = ("physics", "models", "sensors", "world", "ros")
+LAYERS = ("physics", "models", "control", "sensors", "world", "ros")
 ROS_MODULES = ("rospy", "genpy", "rosgraph", "rospkg", "tf2_ros", "dynamic_reconfigure")
 MAX_MODULE_LINES = 700
 

@@ -218,6 +218,8 @@ class RobotModel:
     static: bool = False
     # The folder of the file the model came from: its relative mesh names are read against it.
     base: Optional[str] = None
+    # The URDF's <transmission> elements, for gazebo_ros_control (control.transmissions reads them).
+    transmissions: List[Element] = field(default_factory=list)
 
     def plugin(self, filename: str) -> Optional[GazeboPlugin]:
         """The first plugin loaded from ``filename`` (e.g. 'libgazebo_ros_kobuki.so')."""
@@ -546,6 +548,7 @@ def parse_urdf(text: str) -> RobotModel:
             raise ModelError(f"duplicate joint name '{joint.name}'")
         joints[joint.name] = joint
     model = RobotModel(name, links, joints, _find_root(links, joints), warnings=warnings)
+    model.transmissions = robot.findall("transmission")
     for element in robot.findall("gazebo"):
         _parse_gazebo(element, model)
     return model

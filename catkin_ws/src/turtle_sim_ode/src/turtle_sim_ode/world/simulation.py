@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass
-from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Dict, List, Mapping, Optional, Protocol, Sequence, Tuple, Union
 
 from turtle_sim_ode.models.builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
 from turtle_sim_ode.models.includes import resolve_includes, sun_lights
@@ -29,6 +29,16 @@ Pose6 = Tuple[float, float, float, float, float, float]
 SpawnPose = Union[Sequence[float], Tuple[Vec3, QuatXYZW]]
 
 log = logging.getLogger(__name__)
+
+
+class StepHook(Protocol):
+    """Work a plugin does before every physics step (``step(sim_time, time_step)``) and forgets on a reset."""
+
+    def step(self, now: float, dt: float) -> None:
+        ...
+
+    def reset(self) -> None:
+        ...
 
 
 @dataclass(frozen=True)
@@ -72,6 +82,8 @@ class Simulation(WorldControl, LightControl):
             1.0 / self.physics.time_step if max_update_rate is None else update_rate(max_update_rate, "max_update_rate")
         )
         self.loads: List[Load] = []
+        # Per model, what runs before each physics step beside the drives (gazebo_ros_control's update).
+        self.step_hooks: Dict[str, StepHook] = {}
         self._drive_overrides = dict(drive_overrides or {})
         self._spawned: Dict[str, _Spawned] = {}
         # The loaded world's lights by name (see world.lights) and sky colour for the cameras (None: Gazebo's).
@@ -248,6 +260,7 @@ class Simulation(WorldControl, LightControl):
         del self.models[name]
         del self._spawned[name]
         self.robots.pop(name, None)
+        self.step_hooks.pop(name, None)
         self.plugins.pop(name, None)
         self.loads = [load for load in self.loads if load.model != name]
         model.remove()
@@ -259,6 +272,8 @@ class Simulation(WorldControl, LightControl):
         dt = self.physics.time_step
         for robot in self.robots.values():
             robot.drive.update(now, dt)
+        for hook in self.step_hooks.values():
+            hook.step(now, dt)
         if self.loads:
             self.apply_loads()
         self.physics.step()
@@ -286,6 +301,8 @@ class Simulation(WorldControl, LightControl):
         for robot in self.robots.values():
             robot.drive.stop()
             robot.reset_odometry(now)
+        for hook in self.step_hooks.values():
+            hook.reset()
 
     def reset_simulation(self) -> None:
         """Gazebo's reset_simulation: ``reset_world`` with sim time back at 0."""

@@ -23,6 +23,7 @@ from turtle_sim_ode.ros.plugins import (
     p3d,
     planar_move,
     range_finder,
+    ros_control,
     skid_steer_drive,
     velodyne,
 )
@@ -42,6 +43,7 @@ from turtle_sim_ode.world.plugins.hector_gps import HectorGpsConfig
 from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
 from turtle_sim_ode.world.plugins.planar_move import PlanarMoveConfig
+from turtle_sim_ode.world.plugins.ros_control import RosControlPluginConfig
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
 from turtle_sim_ode.world.simulation import Simulation
 
@@ -64,6 +66,7 @@ ADAPTERS: Dict[type, Adapter] = {
     HectorImuConfig: hector_imu.interfaces,
     HectorGpsConfig: hector_gps.interfaces,
     ForceConfig: force.interfaces,
+    RosControlPluginConfig: ros_control.interfaces,
 }
 
 

@@ -12,7 +12,7 @@ from turtle_sim_ode.models.builder import BuiltModel, JointHandle
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.sensors.config import SensorBlocks
-from turtle_sim_ode.world.diff_drive import DiffDriveParams
+from turtle_sim_ode.world.diff_drive import DiffDriveController, DiffDriveParams
 from turtle_sim_ode.world.plugins import (
     diff_drive,
     force,
@@ -23,6 +23,7 @@ from turtle_sim_ode.world.plugins import (
     kobuki,
     p3d,
     planar_move,
+    ros_control,
     skid_steer_drive,
 )
 from turtle_sim_ode.world.plugins.diff_drive import DIFF_DRIVE, DiffDriveRobot, DriveConfig
@@ -46,6 +47,7 @@ MODULES = (
     hector_imu,
     hector_gps,
     force,
+    ros_control,
 )
 MODEL_PLUGINS: Dict[str, Callable[[str, GazeboPlugin, Mapping[str, object]], object]] = {
     name: module.read for module in MODULES for name in module.MODEL_PLUGINS

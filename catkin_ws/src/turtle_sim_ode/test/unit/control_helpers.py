@@ -1,0 +1,96 @@
+"""Fakes for the ros_control core's tests: joints that are point inertias, and a hardware built over them."""
+from __future__ import annotations
+
+from typing import Dict, List, Tuple
+
+from conftest import PACKAGE_ROOT
+
+from turtle_sim_ode.control.hardware import DefaultRobotHWSim
+from turtle_sim_ode.control.manager import ControllerManager
+from turtle_sim_ode.control.transmissions import read_transmissions
+from turtle_sim_ode.models.urdf import parse_urdf
+
+MODELS = PACKAGE_ROOT / "test" / "models"
+ARM_URDF = (MODELS / "two_link_arm.urdf").read_text()
+BASE_URDF = (MODELS / "four_wheel_base.urdf").read_text()
+
+
+class InertiaJoint:
+    """A joint moving an inertia: an effort accelerates it; a velocity motor sets its speed if its force allows."""
+
+    def __init__(self, inertia: float = 1.0, position: float = 0.0) -> None:
+        self.inertia = inertia
+        self.pos = position
+        self.vel = 0.0
+        self.effort = 0.0
+        self.motor = None
+
+    def position(self) -> float:
+        return self.pos
+
+    def velocity(self) -> float:
+        return self.vel
+
+    def apply_effort(self, effort: float) -> None:
+        self.effort, self.motor = effort, None
+
+    def drive(self, velocity: float, max_force: float) -> None:
+        self.motor = (velocity, max_force)
+
+    def step(self, dt: float) -> None:
+        if self.motor is not None:
+            target, force = self.motor
+            change = max(-force * dt / self.inertia, min(force * dt / self.inertia, target - self.vel))
+            self.vel += change
+        else:
+            self.vel += self.effort / self.inertia * dt
+        self.pos += self.vel * dt
+
+
+class Rig:
+    """A parsed fixture robot, its joints as InertiaJoints, the hardware and a manager logging to a list."""
+
+    def __init__(self, urdf: str, robot_params: dict = None, inertia: float = 1.0) -> None:
+        self.robot = parse_urdf(urdf)
+        transmissions, self.warnings = read_transmissions(self.robot)
+        self.joints: Dict[str, InertiaJoint] = {t.name: InertiaJoint(inertia) for t in transmissions}
+        self.hw = DefaultRobotHWSim(transmissions, self.joints, robot_params)
+        self.log: List[Tuple[str, str]] = []
+        self.manager = ControllerManager(self.hw, self.robot, lambda level, text: self.log.append((level, text)))
+        self.time = 0.0
+
+    def errors(self) -> List[str]:
+        return [text for level, text in self.log if level == "error"]
+
+    def run(self, seconds: float, dt: float = 0.001) -> None:
+        for _ in range(int(round(seconds / dt))):
+            self.time += dt
+            self.hw.read()
+            self.manager.update(self.time, dt)
+            self.hw.write(dt)
+            for joint in self.joints.values():
+                joint.step(dt)
+
+    def start(self, name: str, params: dict) -> None:
+        assert self.manager.load(name, params), self.log
+        assert self.manager.switch([name], [], 2), self.log
+
+
+def simulated(urdf: str, name: str, z: float, controllers: dict):
+    """A Simulation with the model spawned at height z and its ros_control stepped before every physics step, the
+    controllers loaded and started: (simulation, RosControl)."""
+    from turtle_sim_ode.control.ode_joint import OdeSimJoint
+    from turtle_sim_ode.control.plugin import RosControl, RosControlConfig
+    from turtle_sim_ode.world.simulation import Simulation
+
+    sim = Simulation()
+    sim.spawn_urdf(name, urdf, (0.0, 0.0, z, 0.0, 0.0, 0.0))
+    model = sim.models[name]
+    config = RosControlConfig.read({}, name, sim.physics.time_step)
+    joints = {joint: OdeSimJoint(model.joint(joint)) for joint in model.joints}
+    control = RosControl(config, model.robot, joints, {}, lambda level, text: None)
+    for controller, params in controllers.items():
+        assert control.manager.load(controller, params)
+    assert control.manager.switch(list(controllers), [], 2)
+    sim.step_hooks[name] = control
+    return sim, control
