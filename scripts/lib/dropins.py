@@ -1,18 +1,21 @@
 #!/usr/bin/env python3
 """Workspace drop-ins: packages that stand in for a system ROS package on systems that lack it.
 
-A drop-in is a workspace package whose package.xml exports <dropin/> (catkin_ws/src/xacro, gazebo_ros, controller_manager
-and the message packages control_msgs and controller_manager_msgs). Where a
-package of the same name is installed outside the workspace (<prefix>/share/<name>/package.xml, for the prefixes
-/opt/ros/noetic, /usr and those on CMAKE_PREFIX_PATH), the drop-in gets a CATKIN_IGNORE file: catkin_make,
-catkin-tools, rospack and rospkg all skip a folder holding one, so the system's package is the one found and
-nothing of the workspace shadows it. Where the system has no such package, a CATKIN_IGNORE written here is
-removed again (one a person wrote is left alone).
+A drop-in is a workspace package whose package.xml exports <dropin/> (catkin_ws/src/xacro, gazebo_ros, kobuki_msgs,
+turtlebot_gazebo, controller_manager, ...). It stands aside (gets a CATKIN_IGNORE file, which catkin_make,
+catkin-tools, rospack and rospkg all honour) wherever a real package of the same name exists:
+  - installed: <prefix>/share/<name>/package.xml for the prefixes /opt/ros/noetic, /usr and those on
+    CMAKE_PREFIX_PATH outside the workspace;
+  - in the user's own workspace: another package folder of that name under the workspace's src;
+  - in an underlay workspace: a package folder below a ROS_PACKAGE_PATH entry outside the workspace, or below the
+    source space a devel-space prefix on CMAKE_PREFIX_PATH names in its .catkin file.
+A copy of a drop-in (installed, or in another workspace) is never the real package. Where no real package exists,
+a CATKIN_IGNORE written here is removed again (one a person wrote is left alone).
 
-  dropins.py apply [--src DIR] [--devel DIR] [--prefix P ...]
+  dropins.py apply [--src DIR] [--devel DIR] [--prefix P ...] [--underlay DIR ...]
       write or remove the CATKIN_IGNORE files (and, for an ignored drop-in, its leftovers in the devel space);
       print the folders of the drop-ins in use, one a line; say what was decided on stderr
-  dropins.py pypi-missing --target DIR [--src DIR] [--prefix P ...]
+  dropins.py pypi-missing --target DIR [--src DIR] [--prefix P ...] [--underlay DIR ...]
       print the pypi-requirements.txt files of the drop-ins in use that DIR does not satisfy yet
 
 Standard library only: scripts/install_deps.sh runs this before anything is installed.
@@ -30,27 +33,76 @@ MARKER = "# written by scripts/lib/dropins.py"
 REQUIREMENT = re.compile(r"^\s*([A-Za-z0-9_.-]+)==([A-Za-z0-9_.+-]+)")
 
 
-def find_dropins(src_dir):
-    """{package name: folder} of the drop-ins below src_dir (a package folder's subfolders are not searched)."""
-    dropins = {}
-    for root, dirs, files in os.walk(src_dir):
+def package_folders(top, max_depth=None):
+    """[(name, folder, is a drop-in, ignored by a person)] of the packages below top, as catkin and rospack find
+    them: nothing below a package folder, no hidden folders, nothing below a CATKIN_IGNORE a person wrote (a package
+    folder holding one is still listed, flagged). max_depth limits how far below top an underlay is searched."""
+    found = []
+    top_depth = top.rstrip(os.sep).count(os.sep)
+    for root, dirs, files in os.walk(top):
         dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+        if max_depth is not None and root.count(os.sep) - top_depth >= max_depth:
+            dirs[:] = []
+        ignored = "CATKIN_IGNORE" in files and not written_here(os.path.join(root, "CATKIN_IGNORE"))
+        if ignored:
+            dirs[:] = []
         if "package.xml" not in files:
             continue
-        dirs[:] = []  # as catkin: nothing below a package
-        if is_dropin(os.path.join(root, "package.xml")):
-            dropins[ET.parse(os.path.join(root, "package.xml")).findtext("name").strip()] = root
-    return dropins
+        dirs[:] = []
+        manifest = os.path.join(root, "package.xml")
+        try:
+            name = ET.parse(manifest).findtext("name").strip()
+        except (ET.ParseError, AttributeError):
+            continue  # not our business: catkin names the broken manifest itself
+        found.append((name, root, is_dropin(manifest), ignored))
+    return found
+
+
+def written_here(ignore):
+    with open(ignore) as ignore_file:
+        return ignore_file.read().startswith(MARKER)
+
+
+def find_dropins(src_dir):
+    """{package name: folder} of the drop-ins below src_dir (a package folder's subfolders are not searched)."""
+    return {name: folder for name, folder, dropin, _ in package_folders(src_dir) if dropin}
+
+
+def workspace_packages(src_dir):
+    """{package name: folder} of the packages below src_dir that are not drop-ins (the user's own)."""
+    return {name: folder for name, folder, dropin, ignored in package_folders(src_dir) if not (dropin or ignored)}
+
+
+def underlay_sources(workspace):
+    """Folders holding an underlay workspace's packages: ROS_PACKAGE_PATH entries and the source spaces that
+    devel-space prefixes on CMAKE_PREFIX_PATH list in their .catkin file, all outside the workspace and outside
+    the system's share folders (those are searched by system_package)."""
+    sources = [p for p in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
+    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
+        marker = os.path.join(prefix, ".catkin") if prefix else ""
+        if marker and os.path.isfile(marker):
+            with open(marker) as catkin_file:
+                sources.extend(p for p in catkin_file.read().strip().split(";") if p)
+    system_shares = {os.path.realpath(os.path.join(p, "share")) for p in ("/opt/ros/noetic", "/usr")}
+    kept = []
+    for source in sources:
+        real = os.path.realpath(source)
+        if os.path.isdir(real) and real not in system_shares and not inside(real, workspace) and real not in kept:
+            kept.append(real)
+    return kept
+
+
+def inside(path, folder):
+    folder = os.path.realpath(folder)
+    return path == folder or path.startswith(folder + os.sep)
 
 
 def system_prefixes(workspace):
     """/opt/ros/noetic, /usr and CMAKE_PREFIX_PATH's entries, without those inside the workspace."""
-    workspace = os.path.realpath(workspace)
     prefixes = ["/opt/ros/noetic", "/usr"] + os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep)
     kept = []
     for prefix in prefixes:
-        real = os.path.realpath(prefix) if prefix else ""
-        if real and real != workspace and not real.startswith(workspace + os.sep) and prefix not in kept:
+        if prefix and not inside(os.path.realpath(prefix), workspace) and prefix not in kept:
             kept.append(prefix)
     return kept
 
@@ -72,31 +124,53 @@ def system_package(name, prefixes):
     return None
 
 
-def decide(src_dir, prefixes):
-    """[(name, folder, system package.xml or None)] for every drop-in."""
-    return [(name, folder, system_package(name, prefixes)) for name, folder in sorted(find_dropins(src_dir).items())]
+# How deep below a ROS_PACKAGE_PATH entry an underlay's packages are looked for (src/<repository>/<package> is 2).
+UNDERLAY_DEPTH = 4
 
 
-def apply(src_dir, prefixes, devel_dir=None, log=sys.stderr):
+def underlay_packages(sources):
+    """{package name: folder} of the real (not drop-in) packages in the underlays' source folders, first one wins."""
+    found = {}
+    for source in sources:
+        for name, folder, dropin, ignored in package_folders(source, UNDERLAY_DEPTH):
+            if not (dropin or ignored):
+                found.setdefault(name, folder)
+    return found
+
+
+def decide(src_dir, prefixes, underlays=()):
+    """[(name, folder, the real package's folder or None)] for every drop-in: the user's own package of that name
+    in src_dir first, then an installed one, then one in an underlay."""
+    own = workspace_packages(src_dir)
+    elsewhere = underlay_packages(underlays)
+    decisions = []
+    for name, folder in sorted(find_dropins(src_dir).items()):
+        manifest = system_package(name, prefixes)
+        real = own.get(name) or (os.path.dirname(manifest) if manifest else None) or elsewhere.get(name)
+        decisions.append((name, folder, real))
+    return decisions
+
+
+def apply(src_dir, prefixes, devel_dir=None, log=sys.stderr, underlays=()):
     """Write/remove the CATKIN_IGNORE files; return the folders of the drop-ins in use."""
     in_use = []
-    for name, folder, manifest in decide(src_dir, prefixes):
+    for name, folder, real in decide(src_dir, prefixes, underlays):
         ignore = os.path.join(folder, "CATKIN_IGNORE")
-        if manifest:
+        if real:
             if not os.path.exists(ignore):
                 with open(ignore, "w") as ignore_file:
-                    ignore_file.write("%s: the system has %s\n" % (MARKER, os.path.dirname(manifest)))
+                    ignore_file.write("%s: the real package is %s\n" % (MARKER, real))
             for leftover in (("share", name), ("lib", name)) if devel_dir else ():
                 if os.path.isdir(os.path.join(devel_dir, *leftover)):
                     shutil.rmtree(os.path.join(devel_dir, *leftover))
-            log.write("dropins: %s: the system's %s is used (%s ignored)\n" % (name, os.path.dirname(manifest), folder))
+            log.write("dropins: %s: the real %s is used (%s ignored)\n" % (name, real, folder))
             continue
-        if os.path.exists(ignore) and open(ignore).read().startswith(MARKER):
+        if os.path.exists(ignore) and written_here(ignore):
             os.remove(ignore)
         if os.path.exists(ignore):
             log.write("dropins: %s: %s has a CATKIN_IGNORE of its own: left alone\n" % (name, folder))
             continue
-        log.write("dropins: %s: the system has none, the workspace's drop-in is used\n" % name)
+        log.write("dropins: %s: no real package found, the workspace's drop-in is used\n" % name)
         in_use.append(folder)
     return in_use
 
@@ -120,18 +194,23 @@ def main(argv=None):
     parser.add_argument("--src", default=DEFAULT_SRC, help="the workspace's src folder")
     parser.add_argument("--devel", help="the devel space, to remove an ignored drop-in's leftovers from")
     parser.add_argument("--prefix", action="append", help="a system prefix (repeatable; default: see above)")
+    parser.add_argument(
+        "--underlay", action="append", help="an underlay's source folder (repeatable; default: see above)"
+    )
     parser.add_argument("--target", help="pypi-missing: the folder the PyPI libraries are installed into")
     args = parser.parse_args(argv)
-    prefixes = args.prefix or system_prefixes(os.path.dirname(os.path.abspath(args.src)))
+    workspace = os.path.dirname(os.path.abspath(args.src))
+    prefixes = args.prefix or system_prefixes(workspace)
+    underlays = args.underlay or underlay_sources(workspace)
     if args.command == "apply":
-        for folder in apply(args.src, prefixes, args.devel):
+        for folder in apply(args.src, prefixes, args.devel, underlays=underlays):
             print(folder)
         return 0
     if not args.target:
         parser.error("pypi-missing needs --target")
-    for name, folder, manifest in decide(args.src, prefixes):
+    for name, folder, real in decide(args.src, prefixes, underlays):
         requirements = os.path.join(folder, "pypi-requirements.txt")
-        if not manifest and os.path.isfile(requirements) and unsatisfied_requirements(requirements, args.target):
+        if not real and os.path.isfile(requirements) and unsatisfied_requirements(requirements, args.target):
             print(requirements)
     return 0
 

@@ -1,7 +1,9 @@
-"""The drop-in mechanism (scripts/lib/dropins.py): a workspace xacro or gazebo_ros never shadows the system's.
+"""The drop-in mechanism (scripts/lib/dropins.py): a workspace drop-in (xacro, gazebo_ros, ...) never shadows a
+real package of that name: the system's, one in the user's own workspace, or one in an underlay workspace.
 
 A system package is simulated by a prefix of our own with share/<name>/package.xml, as /opt/ros/noetic has them
 on Ubuntu; the drop-ins are copied into a workspace of their own, so that the real source tree is not touched.
+The environment's ROS_PACKAGE_PATH and CMAKE_PREFIX_PATH are cleared unless a test sets them.
 """
 import os
 import shutil
@@ -22,9 +24,14 @@ MANIFEST = (
 )
 
 
-def run(*args):
+def run(*args, env=None):
+    clean = {k: v for k, v in os.environ.items() if k not in ("ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH")}
     return subprocess.run(
-        [sys.executable, DROPINS] + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True
+        [sys.executable, DROPINS] + list(args),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        universal_newlines=True,
+        env=dict(clean, **(env or {})),
     )
 
 
@@ -49,8 +56,10 @@ def install_system_package(workspace, name):
     return folder
 
 
-def apply(workspace, *extra):
-    result = run("apply", "--src", str(workspace / "ws" / "src"), "--prefix", str(workspace / "system"), *extra)
+def apply(workspace, *extra, env=None):
+    result = run(
+        "apply", "--src", str(workspace / "ws" / "src"), "--prefix", str(workspace / "system"), *extra, env=env
+    )
     assert result.returncode == 0, result.stderr
     return result
 
@@ -68,7 +77,7 @@ def test_system_package_wins_for_catkin_rospack_and_rospkg(workspace):
     result = apply(workspace)
     src = workspace / "ws" / "src"
     assert result.stdout.split() == [str(src / "gazebo_ros")]
-    assert "xacro: the system's %s is used" % system_xacro in result.stderr
+    assert "xacro: the real %s is used" % system_xacro in result.stderr
     assert (src / "xacro" / "CATKIN_IGNORE").read_text().startswith("# written by scripts/lib/dropins.py")
     # catkin_make and catkin-tools take their package list from catkin_pkg
     assert sorted(p.name for p in find_packages(str(src)).values()) == ["gazebo_ros", "user_pkg"]
@@ -136,6 +145,65 @@ def test_pypi_requirements_only_for_dropins_in_use_and_missing(workspace):
     (target / ("xacro-%s.dist-info" % pin.split("==")[1])).rmdir()
     install_system_package(workspace, "xacro")
     assert run(*args, "--target", str(target)).stdout.split() == []
+
+
+def add_package(folder, name, manifest=MANIFEST):
+    folder.mkdir(parents=True)
+    (folder / "package.xml").write_text(manifest % name if "%s" in manifest else manifest)
+    return folder
+
+
+def test_a_package_of_the_users_own_workspace_wins(workspace):
+    """A user who clones the real gazebo_ros into the same src (catkin_ws/src/gazebo_ros_pkgs/gazebo_ros) gets it:
+    catkin_make would otherwise stop on two packages of one name."""
+    src = workspace / "ws" / "src"
+    users = add_package(src / "gazebo_ros_pkgs" / "gazebo_ros", "gazebo_ros")
+    result = apply(workspace)
+    assert result.stdout.split() == [str(src / "xacro")]
+    assert "gazebo_ros: the real %s is used" % users in result.stderr
+    packages = find_packages(str(src))  # raises on duplicate names
+    assert sorted((p.name, os.path.join(str(src), path)) for path, p in packages.items()) == [
+        ("gazebo_ros", str(users)),
+        ("user_pkg", str(src / "user_pkg")),
+        ("xacro", str(src / "xacro")),
+    ]
+    # the user drops their copy: the drop-in comes back
+    shutil.rmtree(str(users))
+    assert str(src / "gazebo_ros") in apply(workspace).stdout.split()
+    assert not (src / "gazebo_ros" / "CATKIN_IGNORE").exists()
+
+
+def test_a_users_package_they_ignored_themselves_does_not_count(workspace):
+    src = workspace / "ws" / "src"
+    users = add_package(src / "old" / "xacro", "xacro")
+    (users / "CATKIN_IGNORE").write_text("")
+    assert str(src / "xacro") in apply(workspace).stdout.split()
+
+
+def test_a_package_in_an_underlay_wins(workspace):
+    """Underlays found as the devel/setup.bash of another workspace leaves them: its source space on
+    ROS_PACKAGE_PATH, its devel space on CMAKE_PREFIX_PATH with a .catkin file naming the source space."""
+    src = workspace / "ws" / "src"
+    underlay_src = workspace / "underlay" / "src"
+    add_package(underlay_src / "turtlebot_simulator" / "gazebo_ros", "gazebo_ros")
+    result = apply(workspace, env={"ROS_PACKAGE_PATH": str(underlay_src)})
+    assert result.stdout.split() == [str(src / "xacro")]
+    (src / "gazebo_ros" / "CATKIN_IGNORE").unlink()
+    devel = workspace / "underlay" / "devel"
+    devel.mkdir()
+    (devel / ".catkin").write_text(str(underlay_src))
+    assert apply(workspace, env={"CMAKE_PREFIX_PATH": str(devel)}).stdout.split() == [str(src / "xacro")]
+    assert apply(workspace, "--underlay", str(underlay_src)).stdout.split() == [str(src / "xacro")]
+
+
+def test_a_dropin_in_an_underlay_or_the_workspace_itself_is_not_real(workspace):
+    """Another checkout of this repository as an underlay, or this workspace's own src on ROS_PACKAGE_PATH (as its
+    devel/setup.bash puts it), holds drop-ins only: they are not real packages."""
+    src = workspace / "ws" / "src"
+    underlay_src = workspace / "underlay" / "src"
+    shutil.copytree(os.path.join(SRC, "xacro"), str(underlay_src / "xacro"), ignore=shutil.ignore_patterns("test"))
+    result = apply(workspace, env={"ROS_PACKAGE_PATH": "%s:%s" % (underlay_src, src)})
+    assert sorted(result.stdout.split()) == [str(src / "gazebo_ros"), str(src / "xacro")]
 
 
 @pytest.mark.parametrize("platform", ["debian", "ubuntu"])

@@ -12,8 +12,8 @@ import rostest
 from gazebo_msgs.msg import ModelState
 from gazebo_msgs.srv import DeleteModel, GetModelState, SetModelState, SpawnModel
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
+from kobuki_msgs.msg import BumperEvent, CliffEvent
 from sensor_msgs.msg import Imu, LaserScan
-from turtle_sim_ode_msgs.msg import BumperEvent, CliffEvent
 
 MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
 WALL_SDF = """<sdf version="1.6"><model name="wall"><static>true</static><link name="link">

@@ -4,13 +4,7 @@ escape sequence publishes linear.x 2.0 on turtle1/cmd_vel (down -2.0, left angul
 exit code 0 and the terminal's settings as they were."""
 from __future__ import annotations
 
-import os
-import pty
-import select
-import signal
-import subprocess
 import sys
-import termios
 import threading
 import time
 import unittest
@@ -18,6 +12,7 @@ import unittest
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
+from workspace_testing.terminal import PseudoTerminal
 
 KEYS = {"up": b"\x1b[A", "down": b"\x1b[B", "left": b"\x1b[D", "right": b"\x1b[C"}
 
@@ -28,24 +23,11 @@ class TeleopOnPty(unittest.TestCase):
         self.twists = []
         self.changed = threading.Condition()
         self.sub = rospy.Subscriber("/turtle1/cmd_vel", Twist, self.on_twist, queue_size=10)
-        self.master, self.slave = pty.openpty()
-        self.before = termios.tcgetattr(self.slave)
-        self.output = b""
-        self.process = subprocess.Popen(
-            ["rosrun", "turtlesim", "turtle_teleop_key"],
-            stdin=self.slave,
-            stdout=self.slave,
-            stderr=self.slave,
-            start_new_session=True,
-        )
+        self.terminal = PseudoTerminal(["rosrun", "turtlesim", "turtle_teleop_key"])
 
     def tearDown(self):
         self.sub.unregister()
-        if self.process.poll() is None:
-            os.killpg(self.process.pid, signal.SIGKILL)
-            self.process.wait(5)
-        os.close(self.master)
-        os.close(self.slave)
+        self.terminal.close()
 
     def on_twist(self, msg: Twist) -> None:
         with self.changed:
@@ -53,13 +35,8 @@ class TeleopOnPty(unittest.TestCase):
             self.changed.notify_all()
 
     def read_until(self, text: bytes) -> None:
-        deadline = time.monotonic() + self.timeout
-        while text not in self.output:
-            remaining = deadline - time.monotonic()
-            self.assertGreater(remaining, 0, "%r not seen; output: %r" % (text, self.output))
-            ready, _, _ = select.select([self.master], [], [], remaining)
-            if ready:
-                self.output += os.read(self.master, 4096)
+        seen = self.terminal.read_until(text, self.timeout)
+        self.assertTrue(seen, "%r not seen; output: %r" % (text, self.terminal.output))
 
     def press(self, key: str, linear: float, angular: float, again_s: float = 0.0) -> None:
         """Press ``key`` and expect its twist; with ``again_s``, press it again every ``again_s`` until one comes."""
@@ -67,7 +44,7 @@ class TeleopOnPty(unittest.TestCase):
             count = len(self.twists)
         deadline = time.monotonic() + self.timeout
         while True:
-            os.write(self.master, KEYS[key])
+            self.terminal.write(KEYS[key])
             wait = min(again_s or self.timeout, deadline - time.monotonic())
             with self.changed:
                 if self.changed.wait_for(lambda: len(self.twists) > count, wait):
@@ -78,13 +55,13 @@ class TeleopOnPty(unittest.TestCase):
 
     def test_arrows_and_quit(self):
         self.read_until(b"Use arrow keys to move the turtle. 'q' to quit.")
-        self.assertIn(b"Reading from keyboard", self.output)
+        self.assertIn(b"Reading from keyboard", self.terminal.output)
         # The publisher must be connected before a key is worth pressing; there is no event to wait on for that.
         deadline = time.monotonic() + self.timeout
         while self.sub.get_num_connections() == 0:
             self.assertLess(time.monotonic(), deadline, "turtle_teleop_key never connected to turtle1/cmd_vel")
             time.sleep(0.05)
-        self.assertNotEqual(termios.tcgetattr(self.slave)[3], self.before[3], "terminal not in raw mode")
+        self.assertNotEqual(self.terminal.settings()[3], self.terminal.settings_before[3], "terminal not in raw mode")
         # Our side of the connection may be up a moment before the publisher's, and a message published in that
         # moment is lost (ROS 1 topics have no acknowledgement; CI saw it once): the first key is pressed until it
         # is heard.
@@ -92,9 +69,9 @@ class TeleopOnPty(unittest.TestCase):
         self.press("down", -2.0, 0.0)
         self.press("left", 0.0, 2.0)
         self.press("right", 0.0, -2.0)
-        os.write(self.master, b"q")
-        self.assertEqual(self.process.wait(self.timeout), 0)
-        self.assertEqual(termios.tcgetattr(self.slave), self.before, "terminal settings not restored")
+        self.terminal.write(b"q")
+        self.assertEqual(self.terminal.process.wait(self.timeout), 0)
+        self.assertEqual(self.terminal.settings(), self.terminal.settings_before, "terminal settings not restored")
 
 
 if __name__ == "__main__":

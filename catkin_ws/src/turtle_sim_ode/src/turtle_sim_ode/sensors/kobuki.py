@@ -1,8 +1,9 @@
-"""The Kobuki base's bumpers and cliff sensors, as kobuki_gazebo_plugins simulates them."""
+"""The Kobuki base's bumpers, cliff sensors and wheel drops, and its core sensor state's bits, as
+kobuki_gazebo_plugins simulates them."""
 from __future__ import annotations
 
 import math
-from typing import List, Optional, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import ode
 
@@ -11,17 +12,24 @@ from turtle_sim_ode.models.builder import (
     Quat,
     Vec3,
     compose,
+    inverse,
     quat_rotate,
 )
+from turtle_sim_ode.models.urdf import RobotModel
 from turtle_sim_ode.physics.world import ContactWatch, PhysicsWorld
 from turtle_sim_ode.sensors.rays import ray_distance, world_geoms
 
 _NO_ROTATION: Quat = (1.0, 0.0, 0.0, 0.0)
 
-# kobuki_msgs/BumperEvent and CliffEvent sensor indices and states.
+# kobuki_msgs/BumperEvent, CliffEvent and WheelDropEvent sensor indices and states.
 LEFT, CENTER, RIGHT = 0, 1, 2
 RELEASED, PRESSED = 0, 1
 FLOOR, CLIFF = 0, 1
+WHEEL_LEFT, WHEEL_RIGHT = 0, 1
+RAISED, DROPPED = 0, 1
+# kobuki_msgs/SensorState bit flags for bumper and cliff (left, centre, right) and wheel_drop (left, right).
+STATE_BITS_LCR = (4, 2, 1)
+STATE_BITS_WHEELS = (2, 1)
 
 # kobuki_gazebo_plugins (gazebo_ros_kobuki_updates.cpp) bumper sectors, angle of the contact
 # measured from the base's +x axis, counter-clockwise: LEFT (30 deg, 90 deg], CENTER
@@ -36,6 +44,16 @@ KOBUKI_CLIFF_OFFSETS: Tuple[Vec3, Vec3, Vec3] = (
 )
 KOBUKI_CLIFF_RANGE = 0.15
 KOBUKI_CLIFF_THRESHOLD = 0.04
+
+
+def report_changes(reported: List[bool], current: Sequence[bool], on: int, off: int) -> List[Tuple[int, int]]:
+    """(index, on or off) for each flag of ``current`` that differs from ``reported``, which is updated."""
+    events = []
+    for index, now in enumerate(current):
+        if now != reported[index]:
+            reported[index] = now
+            events.append((index, on if now else off))
+    return events
 
 
 # --- bumper --------------------------------------------------------------------------------
@@ -89,14 +107,14 @@ class BumperSensor:
                 state[bumper] = True
         return state
 
+    @property
+    def state(self) -> List[bool]:
+        """[left, center, right] as last reported by changes()."""
+        return list(self._reported)
+
     def changes(self) -> List[Tuple[int, int]]:
         """(bumper, PRESSED or RELEASED) for each bumper whose state changed since the last call."""
-        events = []
-        for bumper, now in enumerate(self.pressed()):
-            if now != self._reported[bumper]:
-                self._reported[bumper] = now
-                events.append((bumper, PRESSED if now else RELEASED))
-        return events
+        return report_changes(self._reported, self.pressed(), PRESSED, RELEASED)
 
 
 # --- cliff ----------------------------------------------------------------------------------
@@ -171,6 +189,11 @@ class CliffSensor:
         """For each sensor: True when it sees a cliff."""
         return [d > self.threshold for d in self.distances()]
 
+    @property
+    def state(self) -> List[bool]:
+        """[left, front, right]: a cliff, as last reported by changes()."""
+        return list(self._reported)
+
     def changes(self) -> List[Tuple[int, int, float]]:
         """(sensor, CLIFF or FLOOR, distance) for each sensor whose state changed since the last call."""
         events = []
@@ -180,3 +203,60 @@ class CliffSensor:
                 self._reported[sensor] = now
                 events.append((sensor, CLIFF if now else FLOOR, distance))
         return events
+
+
+# --- wheel drop -----------------------------------------------------------------------------
+class WheelDropSensor:
+    """Kobuki's wheel-drop switches: a wheel whose collisions touched nothing during the last step has dropped
+    (kobuki_gazebo_plugins' contact sensors on the wheel links; a wheel's contacts are with the floor or an
+    obstacle, never its own model). Watches contacts from construction on; ``close()`` stops that."""
+
+    def __init__(self, physics: PhysicsWorld, model: BuiltModel, links: Sequence[str]) -> None:
+        self.physics = physics
+        self._watches: List[ContactWatch] = []
+        for link in links:
+            geoms = model.geoms.get(link)
+            if not geoms:
+                self.close()
+                raise KeyError(f"model '{model.name}' has no collision geoms on wheel link '{link}'")
+            self._watches.append(physics.watch_contacts(geoms))
+        self._reported = [False] * len(self._watches)
+
+    def close(self) -> None:
+        for watch in self._watches:
+            self.physics.unwatch_contacts(watch)
+        self._watches = []
+
+    def dropped(self) -> List[bool]:
+        return [not watch.contacts for watch in self._watches]
+
+    @property
+    def state(self) -> List[bool]:
+        """[left, right]: dropped, as last reported by changes()."""
+        return list(self._reported)
+
+    def changes(self) -> List[Tuple[int, int]]:
+        """(wheel, DROPPED or RAISED) for each wheel whose state changed since the last call."""
+        return report_changes(self._reported, self.dropped(), DROPPED, RAISED)
+
+
+def state_bits(flags: Sequence[bool], bits: Sequence[int]) -> int:
+    """kobuki_msgs/SensorState's bit field of the flags that are set (``bits``: STATE_BITS_LCR or _WHEELS)."""
+    return sum(bit for flag, bit in zip(flags, bits) if flag)
+
+
+# --- where a model's sensors are -------------------------------------------------------------
+def sensor_links(robot: RobotModel, kind: str) -> Dict[str, str]:
+    """{sensor name: its link} of the model's <sensor type=kind> blocks (the first of a name wins)."""
+    found: Dict[str, str] = {}
+    for block in robot.sensors:
+        name = block.element.get("name", "")
+        if block.element.get("type") == kind and block.link and name not in found:
+            found[name] = block.link
+    return found
+
+
+def offsets_in(model: BuiltModel, base: str, links: Sequence[str]) -> List[Vec3]:
+    """Each link frame's origin in ``base``'s frame (constant where fixed joints join them, as for sensors)."""
+    to_base = inverse(model.link_transform(base))
+    return [compose(to_base, model.link_transform(link))[0] for link in links]

@@ -83,6 +83,8 @@ class DiffDriveController:
         self._command = (0.0, 0.0)
         self._command_time = -math.inf
         self._wheel_speeds = (0.0, 0.0)
+        # The Kobuki's motor power (kobuki_msgs/MotorPower): while off, commands are dropped and the wheels held.
+        self.motors_enabled = True
         for joint in (left, right):
             joint.setParam(oc.PARAM_VEL, 0.0)
             joint.setParam(oc.PARAM_FMAX, params.max_wheel_torque)
@@ -124,6 +126,8 @@ class DiffDriveController:
     def update(self, now: float, dt: float) -> None:
         """Set the motors for the next ``dt`` seconds; call before each physics step."""
         p = self.params
+        if not self.motors_enabled:
+            self._command = (0.0, 0.0)  # as kobuki_gazebo_plugins: after power-on, only a new command moves it
         linear, angular = (0.0, 0.0) if self.timed_out(now) else self._command
         half_turn = angular * p.wheel_separation / 2
         left = (linear - half_turn) / p.wheel_radius
