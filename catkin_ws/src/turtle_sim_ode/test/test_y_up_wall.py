@@ -101,8 +101,13 @@ class YUpWall(unittest.TestCase):
                 self.assertAlmostEqual(measured, expected, delta=RANGE_TOLERANCE, msg="beam at %.3f rad" % angle)
                 checked += 1
         centre = round(-scan.angle_min / scan.angle_increment)
-        rospy.loginfo("scan from x %.4f: beam at %.4f rad %.4f m, the wall's near face %.4f m ahead", scan_x,
-                      scan.angle_min + centre * scan.angle_increment, scan.ranges[centre], WALL_NEAR_FACE_X - scan_x)
+        rospy.loginfo(
+            "scan from x %.4f: beam at %.4f rad %.4f m, the wall's near face %.4f m ahead",
+            scan_x,
+            scan.angle_min + centre * scan.angle_increment,
+            scan.ranges[centre],
+            WALL_NEAR_FACE_X - scan_x,
+        )
         self.assertGreaterEqual(checked, 10, "beams in +-%g rad: %d" % (BEAM_HALF_FAN, checked))
 
     def test_b_driven_into_the_wall_it_stops_at_the_near_face(self) -> None:
