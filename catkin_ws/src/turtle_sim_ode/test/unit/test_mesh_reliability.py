@@ -184,8 +184,8 @@ class TimedLock:
 
 @pytest.fixture
 def api(tmp_path, monkeypatch):
-    """A GazeboApi on a Simulation with the scratch package, with rospy's registrations and the physics'
-    dynamic_reconfigure server (it reads the parameter server) stubbed out (no master)."""
+    """A GazeboApi on a Simulation with the scratch package, with rospy's registrations and the physics
+    dynamic_reconfigure server stubbed out (no master)."""
     gazebo_api = pytest.importorskip("turtle_sim_ode.ros.gazebo_api")
     import rospy
 
@@ -196,7 +196,7 @@ def api(tmp_path, monkeypatch):
     for name in ("Service", "Publisher", "Subscriber"):
         monkeypatch.setattr(rospy, name, Registration)
     monkeypatch.setattr(gazebo_api, "known_topic_types", lambda: {})
-    monkeypatch.setattr(gazebo_api, "PhysicsReconfigure", Registration)
+    monkeypatch.setattr(gazebo_api, "PhysicsReconfigure", Registration)  # a dynamic_reconfigure server needs a master
     sim = Simulation()
     sim.resources = scratch_paths(tmp_path)
     lock = TimedLock()
