@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The holonomic base of models/holonomic_bot.urdf through ROS: planar move on /cmd_vel and /odom
 (GazeboRosPlanarMove), the downward sonar's sensor_msgs/Range (GazeboRosRange), the block laser's
-sensor_msgs/PointCloud (GazeboRosBlockLaser), the hector GPS's NavSatFix (GazeboRosGps) a triggered camera's
-one frame a trigger (GazeboRosTriggeredCamera) and a stereo head's pairs (GazeboRosMultiCamera)."""
+sensor_msgs/PointCloud (GazeboRosBlockLaser), the hector GPS's NavSatFix and set_reference_geopose (GazeboRosGps), a
+triggered camera's one frame a trigger (GazeboRosTriggeredCamera) and a stereo head's pairs (GazeboRosMultiCamera)."""
 import math
 import unittest
 
@@ -11,6 +11,8 @@ import rostest
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import CameraInfo, Image, NavSatFix, PointCloud, Range
+from geographic_msgs.msg import GeoPoint, GeoPose
+from hector_gazebo_plugins.srv import SetReferenceGeoPose
 from std_msgs.msg import Empty
 
 WAIT = 90.0
@@ -38,6 +40,31 @@ class MorePlugins(unittest.TestCase):
         self.assertAlmostEqual(fix.latitude, 47.0, delta=1e-4)
         self.assertAlmostEqual(fix.longitude, 8.5, delta=1e-4)
         self.assertEqual(fix.position_covariance_type, NavSatFix.COVARIANCE_TYPE_DIAGONAL_KNOWN)
+
+    def test_3b_set_reference_geopose_moves_the_fix(self):
+        """hector's setGeoposeCb: the GeoPose becomes the reference (yaw 0: x east); a non-finite one is refused
+        (our choice: upstream takes it) and the GPS goes on publishing."""
+        rospy.wait_for_service("/fix/set_reference_geopose", WAIT)
+        set_reference = rospy.ServiceProxy("/fix/set_reference_geopose", SetReferenceGeoPose)
+        pose = GeoPose(position=GeoPoint(latitude=-33.9, longitude=151.2, altitude=40.0))
+        pose.orientation.w = 1.0
+        set_reference(pose)
+        fix = self._fix_after(rospy.Time.now())
+        self.assertAlmostEqual(fix.latitude, -33.9, delta=1e-4)  # the base is within 10 m of the origin
+        self.assertAlmostEqual(fix.longitude, 151.2, delta=1e-4)
+        self.assertAlmostEqual(fix.altitude, 40.0, delta=0.5)
+        pose.position.latitude = math.nan
+        with self.assertRaises(rospy.ServiceException):
+            set_reference(pose)
+        fix = self._fix_after(rospy.Time.now())
+        self.assertAlmostEqual(fix.latitude, -33.9, delta=1e-4)
+
+    @staticmethod
+    def _fix_after(stamp):
+        while True:
+            fix = rospy.wait_for_message("/fix", NavSatFix, WAIT)
+            if fix.header.stamp > stamp:
+                return fix
 
     def test_5_triggered_camera_sends_a_frame_a_trigger(self):
         images = []

@@ -1,12 +1,15 @@
 """libhector_gazebo_ros_gps.so: tags and defaults as GazeboRosGps::Load reads them, and Update's fix
 (hector_gazebo_plugins/src/gazebo_ros_gps.cpp): WGS84 radii at the reference latitude, latitude from the position
-turned by the reference heading, the world's <spherical_coordinates> with useWorldSphericalCoordinates."""
+turned by the reference heading, the world's <spherical_coordinates> with useWorldSphericalCoordinates, and a new
+reference through setGeoposeCb."""
 from __future__ import annotations
 
 import math
 import random
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from turtle_sim_ode.models.sdf import parse_sdf_world
 from turtle_sim_ode.models.urdf import GazeboPlugin
@@ -68,3 +71,57 @@ def test_world_spherical_coordinates_and_heading() -> None:
 def test_noise_gives_the_covariance() -> None:
     fix = gps({"gaussianNoise": "0.5 0.5 1.0", "drift": "0.1 0.1 0.2"}).update(0.0)
     assert fix.position_covariance[0] == pytest.approx(0.26) and fix.position_covariance[8] == pytest.approx(1.04)
+
+
+def test_set_reference_geopose_takes_the_yaw_as_east_and_keeps_the_load_radii() -> None:
+    """setGeoposeCb: heading = pi/2 - yaw of the GeoPose's orientation (tf getEulerYPR), then Reset; radius_north_
+    and radius_east_ are computed in Load only, so they stay those of 49.9 N even for a reference on the equator."""
+    sensor = gps({})
+    north, east = radii(49.9)
+    sensor.set_reference(0.0, 10.0, 100.0, (0.0, 0.0, 0.0, 1.0))  # yaw 0: the world's x axis points east
+    fix = sensor.update(0.0)
+    assert fix.latitude == pytest.approx(50.0 / north * 180.0 / math.pi, abs=1e-12)  # y = 50 m north
+    assert fix.longitude == pytest.approx(10.0 + 100.0 / east * 180.0 / math.pi, abs=1e-12)  # x = 100 m east
+    assert fix.altitude == pytest.approx(102.0)
+    half = math.radians(90.0) / 2  # yaw 90 deg: x points north again, as heading 0
+    sensor.set_reference(49.9, 8.9, 0.0, (0.0, 0.0, 2.0 * math.sin(half), 2.0 * math.cos(half)))  # not unit
+    fix = sensor.update(0.0)
+    assert fix.latitude == pytest.approx(49.9 + 100.0 / north * 180.0 / math.pi, abs=1e-9)
+    assert fix.longitude == pytest.approx(8.9 - 50.0 / east * 180.0 / math.pi, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    "latitude, longitude, altitude, orientation",
+    [
+        (math.nan, 0.0, 0.0, (0.0, 0.0, 0.0, 1.0)),
+        (91.0, 0.0, 0.0, (0.0, 0.0, 0.0, 1.0)),
+        (0.0, -180.5, 0.0, (0.0, 0.0, 0.0, 1.0)),
+        (0.0, 0.0, math.inf, (0.0, 0.0, 0.0, 1.0)),
+        (0.0, 0.0, 0.0, (0.0, 0.0, 0.0, 0.0)),
+        (0.0, 0.0, 0.0, (0.0, 0.0, math.nan, 1.0)),
+    ],
+)
+def test_a_refused_reference_keeps_the_old_one(latitude, longitude, altitude, orientation) -> None:  # type: ignore
+    sensor = gps({})
+    before = sensor.reference
+    with pytest.raises(ValueError):
+        sensor.set_reference(latitude, longitude, altitude, orientation)
+    assert sensor.reference == before
+    assert math.isfinite(sensor.update(0.0).latitude)
+
+
+@settings(max_examples=60, deadline=None, derandomize=True)
+@given(
+    latitude=st.floats(-90.0, 90.0),
+    longitude=st.floats(-180.0, 180.0),
+    altitude=st.floats(-1e4, 1e5),
+    orientation=st.tuples(*[st.floats(-1.0, 1.0)] * 4).filter(lambda q: sum(v * v for v in q) > 1e-6),
+)
+def test_any_valid_reference_gives_a_finite_fix_at_its_altitude(latitude, longitude, altitude, orientation) -> None:
+    sensor = gps({})
+    sensor.set_reference(latitude, longitude, altitude, orientation)
+    fix = sensor.update(0.0)
+    assert all(math.isfinite(v) for v in (fix.latitude, fix.longitude, fix.altitude))
+    assert fix.altitude == pytest.approx(altitude + 2.0)
+    # The post is 112 m from the origin: at most ~0.001 degree of latitude away from the reference.
+    assert abs(fix.latitude - latitude) < 0.0011

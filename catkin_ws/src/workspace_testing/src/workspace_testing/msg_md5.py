@@ -40,9 +40,11 @@ def expand_actions(action_dir: Path, output_dir: str) -> None:
         )
 
 
-def source_md5sums(package_root: Path, package: str, dependencies: Iterable[str]) -> Dict[str, str]:
+def source_md5sums(
+    package_root: Path, package: str, dependencies: Iterable[str], siblings: Iterable[str] = ()
+) -> Dict[str, str]:
     """{"msg/Name" or "srv/Name": md5sum} of every type the package's sources define (actions' seven messages
-    included)."""
+    included); ``dependencies`` are installed message packages, ``siblings`` drop-in ones beside this package."""
     import genmsg
     from genmsg import msg_loader
 
@@ -52,6 +54,7 @@ def source_md5sums(package_root: Path, package: str, dependencies: Iterable[str]
         msg_dirs: List[str] = [str(package_root / "msg"), generated]
         search_path = {package: msg_dirs}
         search_path.update((dep, [installed_msg_dir(dep)]) for dep in dependencies)
+        search_path.update((dep, [str(package_root.parent / dep / "msg")]) for dep in siblings)
         found = {}
         for folder in msg_dirs + [str(package_root / "srv")]:
             for path in sorted(Path(folder).glob("*.*")) if os.path.isdir(folder) else []:
@@ -66,7 +69,13 @@ def source_md5sums(package_root: Path, package: str, dependencies: Iterable[str]
         return found
 
 
-def md5_tests(package_root: Path, package: str, dependencies: Iterable[str], upstream: Dict[str, str]) -> dict:
+def md5_tests(
+    package_root: Path,
+    package: str,
+    dependencies: Iterable[str],
+    upstream: Dict[str, str],
+    siblings: Iterable[str] = (),
+) -> dict:
     """The tests of a message package's md5sums against ``upstream`` ({"msg/Name": md5sum}), for a test module to
     take with ``globals().update(md5_tests(...))``: every upstream type and no other, each source md5sum, and each
     generated Python class's (skipped where no devel space with the package is sourced)."""
@@ -75,7 +84,7 @@ def md5_tests(package_root: Path, package: str, dependencies: Iterable[str], ups
     @pytest.fixture(scope="module")
     def source() -> Dict[str, str]:
         pytest.importorskip("genmsg")
-        return source_md5sums(package_root, package, dependencies)
+        return source_md5sums(package_root, package, dependencies, siblings)
 
     def test_every_upstream_type_and_no_other(source: Dict[str, str]) -> None:
         assert sorted(source) == sorted(upstream)

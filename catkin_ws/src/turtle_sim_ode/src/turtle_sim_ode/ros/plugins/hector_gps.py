@@ -1,13 +1,14 @@
 """hector_gazebo_plugins' GPS topics (world.plugins.hector_gps) under its robotNamespace, at its update rate:
 ``topicName`` (sensor_msgs/NavSatFix, covariance diagonal known) and ``velocityTopicName``
-(geometry_msgs/Vector3Stamped), in ``frameId`` as given. Not offered: the set_reference_geopose service
-(geographic_msgs) and the dynamic_reconfigure servers."""
+(geometry_msgs/Vector3Stamped), in ``frameId`` as given; the service ``topicName``/set_reference_geopose
+(hector_gazebo_plugins/SetReferenceGeoPose) moves the reference. Not offered: the dynamic_reconfigure servers."""
 from __future__ import annotations
 
 from typing import List
 
 import rospy
 from geometry_msgs.msg import Vector3Stamped
+from hector_gazebo_plugins.srv import SetReferenceGeoPose, SetReferenceGeoPoseRequest, SetReferenceGeoPoseResponse
 from sensor_msgs.msg import NavSatFix
 
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, publisher
@@ -22,12 +23,32 @@ class HectorGpsPublisher(Periodic):
         super().__init__(period(config.update_rate))
         self._gps = gps
         namespace = namespace or config.robot_namespace
-        self._fix_pub = publisher(plugin_topic(namespace, config.fix_topic), NavSatFix, 10)
+        fix_topic = plugin_topic(namespace, config.fix_topic)
+        self._fix_pub = publisher(fix_topic, NavSatFix, 10)
         self._velocity_pub = publisher(plugin_topic(namespace, config.velocity_topic), Vector3Stamped, 10)
         self._fix = NavSatFix(position_covariance_type=NavSatFix.COVARIANCE_TYPE_DIAGONAL_KNOWN)
         self._fix.status.status, self._fix.status.service = config.status, config.service
         self._velocity = Vector3Stamped()
         self._fix.header.frame_id = self._velocity.header.frame_id = config.frame
+        # Last: a service is not among the handles released if a later topic is refused.
+        self._set_reference = rospy.Service(
+            fix_topic + "/set_reference_geopose", SetReferenceGeoPose, self._on_reference
+        )
+
+    def _on_reference(self, request: SetReferenceGeoPoseRequest) -> SetReferenceGeoPoseResponse:
+        """The response is empty, as upstream's: a refused pose is a service error the caller sees."""
+        position, orientation = request.geo_pose.position, request.geo_pose.orientation
+        try:
+            self._gps.set_reference(
+                position.latitude,
+                position.longitude,
+                position.altitude,
+                (orientation.x, orientation.y, orientation.z, orientation.w),
+            )
+        except ValueError as error:
+            rospy.logwarn("%s/set_reference_geopose refused: %s", self._gps.config.fix_topic, error)
+            raise rospy.ServiceException(str(error)) from None
+        return SetReferenceGeoPoseResponse()
 
     def restart(self, now: float) -> None:
         super().restart(now)
@@ -46,6 +67,7 @@ class HectorGpsPublisher(Periodic):
     def close(self) -> None:
         release(self._fix_pub)
         release(self._velocity_pub)
+        self._set_reference.shutdown()
 
 
 def interfaces(context: ModelContext, config: HectorGpsConfig) -> List[Periodic]:

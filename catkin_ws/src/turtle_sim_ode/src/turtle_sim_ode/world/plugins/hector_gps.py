@@ -1,7 +1,8 @@
 """hector_gazebo_plugins' GPS (``libhector_gazebo_ros_gps.so``, GazeboRosGps of hector_gazebo_plugins/src/
 gazebo_ros_gps.cpp): its tags and defaults, and Update's fix: the link's position and velocity through the sensor
 error model (hector_sensor_model), as latitude, longitude and altitude about a reference (the plugin's, or the
-world's <spherical_coordinates> with useWorldSphericalCoordinates), and the velocity turned by the heading."""
+world's <spherical_coordinates> with useWorldSphericalCoordinates), and the velocity turned by the heading; a new
+reference from the set_reference_geopose service (setGeoposeCb)."""
 from __future__ import annotations
 
 import math
@@ -105,6 +106,23 @@ class HectorGps:
         self.position_error = SensorError(config.position, rng)
         self.velocity_error = SensorError(config.velocity, rng)
         self._last: Optional[float] = None
+
+    def set_reference(
+        self, latitude: float, longitude: float, altitude: float, orientation: Tuple[float, float, float, float]
+    ) -> None:
+        """setGeoposeCb: the world origin's new latitude, longitude and altitude, and as the heading (clockwise from
+        north) pi/2 minus the yaw of ``orientation`` (x, y, z, w: the world's x axis, counter-clockwise from east,
+        tf's getEulerYPR); then Reset. As upstream, the earth radii stay those of the reference the plugin was
+        loaded with. ValueError (the reference kept) for a value that is not finite, a latitude or longitude out of
+        range, or a zero quaternion."""
+        values = (latitude, longitude, altitude) + tuple(orientation)
+        norm = math.sqrt(sum(q * q for q in orientation))
+        if not all(math.isfinite(v) for v in values) or abs(latitude) > 90.0 or abs(longitude) > 180.0 or not norm:
+            raise ValueError(f"not finite, out of range or a zero quaternion: {values}")
+        x, y, z, w = (q / norm for q in orientation)
+        yaw = math.atan2(2.0 * (x * y + w * z), w * w + x * x - y * y - z * z)
+        self.reference = (latitude, longitude, math.pi / 2.0 - yaw, altitude)
+        self.reset()
 
     def reset(self) -> None:
         self._last = None
