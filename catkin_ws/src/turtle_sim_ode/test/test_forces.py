@@ -64,6 +64,9 @@ class Forces(unittest.TestCase):
             self.assertEqual(message.header.frame_id, "payload")
             self.assertVector(vector(message.wrench.force), (0, 0, -self.payload_mass * G), self.tolerance, "force")
             self.assertVector(vector(message.wrench.torque), (0, 0, 0), self.tolerance, "torque")
+        rospy.loginfo(
+            "wrist ft force %s torque %s", vector(messages[-1].wrench.force), vector(messages[-1].wrench.torque)
+        )
         stamps = [m.header.stamp.to_sec() for m in messages]
         for earlier, later in zip(stamps, stamps[1:]):
             self.assertAlmostEqual(later - earlier, 1.0 / RATE, delta=STEP * 1.1)
@@ -102,6 +105,7 @@ class Forces(unittest.TestCase):
         span = (second.header.stamp - first.header.stamp).to_sec()
         self.assertGreater(span, 0.4)
         acceleration = [(b - a) / span for a, b in zip(vector(first.twist.linear), vector(second.twist.linear))]
+        rospy.loginfo("box acceleration %s over %.3f s; f3d %s", acceleration, span, vector(lifted[-1].wrench.force))
         for got, want in zip(acceleration, [f / self.box_mass for f in expected]):
             self.assertAlmostEqual(got, want, delta=self.relative * 10.0, msg="acceleration %r" % acceleration)
         Forces.push = push
