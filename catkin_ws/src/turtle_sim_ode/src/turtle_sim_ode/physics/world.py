@@ -346,6 +346,7 @@ class PhysicsWorld:
         self._ground_tests: List[Tuple[ode.GeomObject, ode.Body, PairContact]] = []
         self._pair_cache: Dict[Tuple[ode.GeomObject, ode.GeomObject], PairContact] = {}
         self._jointed: Set[Tuple[ode.Body, ode.Body]] = set()
+        self._pre_step_hooks: List[Callable[[], None]] = []
         self._post_step_hooks: List[Callable[[], None]] = []
         # Contact listeners: geom -> the watches that asked for it (empty: no cost per step).
         self._watches: List[ContactWatch] = []
@@ -460,6 +461,14 @@ class PhysicsWorld:
         self._body_ids.pop(body, None)
         self._kernel_stale = True
 
+    def add_pre_step_hook(self, hook: Callable[[], None]) -> None:
+        """Call ``hook()`` right before every step's integration, once every force for it is added (e.g. to record
+        the state the step starts from)."""
+        self._pre_step_hooks.append(hook)
+
+    def remove_pre_step_hook(self, hook: Callable[[], None]) -> None:
+        self._pre_step_hooks.remove(hook)
+
     def add_post_step_hook(self, hook: Callable[[], None]) -> None:
         """Call ``hook()`` after every step (e.g. to track joint turns)."""
         self._post_step_hooks.append(hook)
@@ -515,6 +524,8 @@ class PhysicsWorld:
             self._collide_in_kernel(self._kernel)
         else:
             self._collide_in_python()
+        for hook in self._pre_step_hooks:
+            hook()
         self._stepper(self.params.time_step)
         self._steps += 1
         for hook in self._post_step_hooks:

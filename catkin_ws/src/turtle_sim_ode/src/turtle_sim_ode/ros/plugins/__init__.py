@@ -13,7 +13,9 @@ from turtle_sim_ode.ros.plugins import (
     bumper,
     camera,
     diff_drive,
+    f3d,
     force,
+    ft_sensor,
     hector_gps,
     hector_imu,
     imu,
@@ -38,7 +40,9 @@ from turtle_sim_ode.sensors.plugins.multicamera import MultiCameraConfig
 from turtle_sim_ode.sensors.plugins.range_finder import RangeConfig
 from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
+from turtle_sim_ode.world.plugins.f3d import F3dConfig
 from turtle_sim_ode.world.plugins.force import ForceConfig
+from turtle_sim_ode.world.plugins.ft_sensor import FtSensorConfig
 from turtle_sim_ode.world.plugins.hector_gps import HectorGpsConfig
 from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
@@ -66,6 +70,8 @@ ADAPTERS: Dict[type, Adapter] = {
     HectorImuConfig: hector_imu.interfaces,
     HectorGpsConfig: hector_gps.interfaces,
     ForceConfig: force.interfaces,
+    F3dConfig: f3d.interfaces,
+    FtSensorConfig: ft_sensor.interfaces,
     RosControlPluginConfig: ros_control.interfaces,
 }
 

@@ -15,7 +15,9 @@ from turtle_sim_ode.sensors.config import SensorBlocks
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 from turtle_sim_ode.world.plugins import (
     diff_drive,
+    f3d,
     force,
+    ft_sensor,
     hector_gps,
     hector_imu,
     imu,
@@ -47,6 +49,8 @@ MODULES = (
     hector_imu,
     hector_gps,
     force,
+    f3d,
+    ft_sensor,
     ros_control,
 )
 MODEL_PLUGINS: Dict[str, Callable[[str, GazeboPlugin, Mapping[str, object]], object]] = {
