@@ -1,5 +1,5 @@
 """gazebo_ros_vacuum_gripper's ROS side (world.plugins.vacuum_gripper), as GazeboRosVacuumGripper::Load makes it in
-the robot namespace: std_srvs/Empty services ``on`` and ``off`` (a second ``on`` or ``off`` warns and still answers),
+the robot namespace (its <robotNamespace>, else the spawn's robot_namespace): std_srvs/Empty services ``on`` and ``off`` (a second ``on`` or ``off`` warns and still answers),
 and std_msgs/Bool on ``topicName``, published after every step: true while the gripper held a link in that step
 (UpdateChild publishes at every world update, false while off). The gripper's work is a Simulation step hook, run
 before each physics step."""
@@ -30,7 +30,9 @@ class VacuumGripperInterface(Periodic):
         super().__init__(0.0)  # every step, as upstream publishes at every world update
         self._gripper = gripper
         self._name = context.name
-        namespace = context.namespace or config.robot_namespace
+        # gazebo_ros gives a plugin the spawn's robot_namespace only where it has no <robotNamespace> of its own
+        # (GazeboRosApiPlugin::walkChildAddRobotNamespace); spawn_model's default is "/".
+        namespace = config.robot_namespace or context.namespace
         self.topic = plugin_topic(namespace, config.topic)
         self.services = [topic_prefix(namespace) + "on", topic_prefix(namespace) + "off"]
         for service in self.services:
