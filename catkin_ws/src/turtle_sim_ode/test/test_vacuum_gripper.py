@@ -90,6 +90,23 @@ class VacuumGripper(unittest.TestCase):
         wait_until(lambda: self.near(TIP_UP, BOX_AT[2]), 10.0, "the box back on the ground, the boom still up")
         self.assertFalse(self.grasping())
 
+    def test_5_bad_grippers_are_refused_or_left_out(self):
+        """A second gripper on the same services is refused at spawn (success false, the services named); a gripper
+        link lumped by a fixed joint leaves the model without the plugin (GazeboRosVacuumGripper::Load's fatal
+        "link ... does not exist"), as upstream."""
+        arm = model_text("vacuum_gripper_arm.urdf")
+        result = self.spawn_urdf_model("arm2", arm, "", pose(y=1.0), "")
+        self.assertFalse(result.success)
+        self.assertIn(NS + "/on", result.status_message)
+        self.assertFalse(self.get_model_state("arm2", "").success)  # nothing of it stays
+        self.off()  # the first gripper's services and topic still serve
+        self.assertFalse(self.grasping())
+        lumped = arm.replace("<bodyName>vacuum_gripper<", "<bodyName>post<").replace(NS, "/arm3/vacuum_gripper")
+        result = self.spawn_urdf_model("arm3", lumped, "", pose(y=-1.0), "")
+        self.assertTrue(result.success, result.status_message)
+        with self.assertRaises(rospy.ROSException):
+            rospy.wait_for_service("/arm3/vacuum_gripper/on", timeout=1.0)
+
 
 if __name__ == "__main__":
     rospy.init_node("test_vacuum_gripper")
