@@ -82,7 +82,8 @@ class Simulation(WorldControl, LightControl):
             1.0 / self.physics.time_step if max_update_rate is None else update_rate(max_update_rate, "max_update_rate")
         )
         self.loads: List[Load] = []
-        # Per model, what runs before each physics step beside the drives (gazebo_ros_control's update).
+        # What runs before each physics step beside the drives, keyed by model name (gazebo_ros_control's update) or
+        # by "model::what" where a model has more (a vacuum gripper's); deleting a model drops both kinds.
         self.step_hooks: Dict[str, StepHook] = {}
         self._drive_overrides = dict(drive_overrides or {})
         self._spawned: Dict[str, _Spawned] = {}
@@ -260,7 +261,8 @@ class Simulation(WorldControl, LightControl):
         del self.models[name]
         del self._spawned[name]
         self.robots.pop(name, None)
-        self.step_hooks.pop(name, None)
+        for key in [key for key in self.step_hooks if key == name or key.startswith(name + SCOPE)]:
+            del self.step_hooks[key]
         self.plugins.pop(name, None)
         self.loads = [load for load in self.loads if load.model != name]
         model.remove()

@@ -27,6 +27,7 @@ from turtle_sim_ode.ros.plugins import (
     range_finder,
     ros_control,
     skid_steer_drive,
+    vacuum_gripper,
     velodyne,
 )
 from turtle_sim_ode.ros.settings import SimulatorSettings
@@ -49,6 +50,7 @@ from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
 from turtle_sim_ode.world.plugins.planar_move import PlanarMoveConfig
 from turtle_sim_ode.world.plugins.ros_control import RosControlPluginConfig
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
+from turtle_sim_ode.world.plugins.vacuum_gripper import VacuumGripperConfig
 from turtle_sim_ode.world.simulation import Simulation
 
 Adapter = Callable[[ModelContext, object], List[Periodic]]
@@ -72,6 +74,7 @@ ADAPTERS: Dict[type, Adapter] = {
     ForceConfig: force.interfaces,
     F3dConfig: f3d.interfaces,
     FtSensorConfig: ft_sensor.interfaces,
+    VacuumGripperConfig: vacuum_gripper.interfaces,
     RosControlPluginConfig: ros_control.interfaces,
 }
 

@@ -27,6 +27,7 @@ from turtle_sim_ode.world.plugins import (
     planar_move,
     ros_control,
     skid_steer_drive,
+    vacuum_gripper,
 )
 from turtle_sim_ode.world.plugins.diff_drive import DIFF_DRIVE, DiffDriveRobot, DriveConfig
 from turtle_sim_ode.world.plugins.imu import IMU
@@ -51,6 +52,7 @@ MODULES = (
     force,
     f3d,
     ft_sensor,
+    vacuum_gripper,
     ros_control,
 )
 MODEL_PLUGINS: Dict[str, Callable[[str, GazeboPlugin, Mapping[str, object]], object]] = {
