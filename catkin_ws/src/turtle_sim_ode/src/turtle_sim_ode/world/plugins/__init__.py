@@ -25,6 +25,7 @@ from turtle_sim_ode.world.plugins import (
     planar_move,
     ros_control,
     skid_steer_drive,
+    tricycle_drive,
 )
 from turtle_sim_ode.world.plugins.diff_drive import DIFF_DRIVE, DiffDriveRobot, DriveConfig
 from turtle_sim_ode.world.plugins.imu import IMU
@@ -41,6 +42,7 @@ MODULES = (
     diff_drive,
     skid_steer_drive,
     planar_move,
+    tricycle_drive,
     p3d,
     joint_state_publisher,
     imu,
