@@ -316,8 +316,8 @@ def test_a_command_not_finite_is_ignored_and_a_reset_stops() -> None:
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     commands=st.lists(st.tuples(st.floats(width=32), st.floats(width=32)), min_size=1, max_size=3),
-    acceleration=st.floats(0.0, 100.0),
-    steering_speed=st.floats(0.0, 5.0),
+    acceleration=st.floats(0.0, 100.0, allow_subnormal=False),
+    steering_speed=st.floats(0.0, 5.0, allow_subnormal=False),
 )
 def test_any_commands_keep_the_sim_alive(commands, acceleration, steering_speed) -> None:
     urdf = TRICYCLE.replace("<wheelAcceleration>0<", f"<wheelAcceleration>{acceleration!r}<")

@@ -67,6 +67,11 @@ class TricycleConfig:
             self.encoder_wheel_right_joint,
         )
 
+    @property
+    def publish_tf(self) -> bool:
+        """publishOdometry always sends odometryFrame -> robotBaseFrame on tf (the node opens /tf for it)."""
+        return True
+
     def make_robot(self, model: BuiltModel) -> "TricycleRobot":
         return TricycleRobot(model, self)
 
