@@ -317,38 +317,6 @@ class BuiltModel:
                 self._hook = _after_step_hook([], self._damping)
                 self._physics.add_post_step_hook(self._hook)
 
-    def move_joints(self, targets: Dict[str, float]) -> None:
-        """Move the bodies below each named joint so it is at its target position (Gazebo's
-        Joint::SetPosition with the world velocities kept); the root body stays, velocities are
-        not touched."""
-        children: Dict[int, List[JointHandle]] = {}
-        for handle in self.joints.values():
-            children.setdefault(id(handle.joint.getBody(1)), []).append(handle)
-        queue = [self.links[self.root_link].body]
-        for parent in queue:  # parents before children; ``queue`` grows while iterating
-            for handle in children.get(id(parent), []):
-                child = handle.joint.getBody(0)
-                queue.append(child)
-                if handle.name not in targets:
-                    continue
-                if handle.type == "continuous":
-                    handle.track_turns()
-                delta = targets[handle.name] - handle.angle()
-                axis = handle.joint.getAxis()
-                if handle.type == "prismatic":
-                    for body in _subtree(child, children):
-                        x, y, z = body.getPosition()
-                        body.setPosition((x + axis[0] * delta, y + axis[1] * delta, z + axis[2] * delta))
-                else:
-                    anchor = handle.joint.getAnchor()
-                    turn = (math.cos(delta / 2),) + tuple(math.sin(delta / 2) * a for a in axis)
-                    for body in _subtree(child, children):
-                        position = body.getPosition()
-                        arm = quat_rotate(turn, tuple(position[i] - anchor[i] for i in range(3)))  # type: ignore
-                        body.setPosition(tuple(anchor[i] + arm[i] for i in range(3)))
-                        body.setQuaternion(quat_multiply(turn, body.getQuaternion()))
-                handle.resync(targets[handle.name])
-
     def set_mass(self, link: str, mass: float, com: Vec3, inertia: Matrix3) -> None:
         """Give the body carrying ``link`` this mass, centre of mass and inertia about it (both
         in the link frame). The body's origin follows its COM; links, geoms and joint frames
@@ -415,14 +383,6 @@ class BuiltModel:
         self.geoms = {}
         self.bodies = []
         self._hook = None
-
-
-def _subtree(body: ode.Body, children: Dict[int, List[JointHandle]]) -> List[ode.Body]:
-    """``body`` and every body below it in the joint tree."""
-    bodies = [body]
-    for current in bodies:
-        bodies.extend(handle.joint.getBody(0) for handle in children.get(id(current), []))
-    return bodies
 
 
 def _reanchor(handle: JointHandle, anchor: Optional[Vec3], axis: Vec3, position: float) -> None:

@@ -26,6 +26,7 @@ from turtle_sim_ode.models.builder import (
     inverse,
     quat_rotate,
 )
+from turtle_sim_ode.models.joint_positions import move_joints
 from turtle_sim_ode.models.urdf import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
@@ -116,7 +117,7 @@ def _set_rigid_twist(bodies: Sequence[ode.Body], origin: Vec3, linear: Vec3, ang
 def _set_configuration(model: BuiltModel, targets: Dict[str, float]) -> None:
     """Move the bodies below each named joint so it is at its target position; the root body
     stays, every body of the model comes to rest."""
-    model.move_joints(targets)
+    move_joints(model, targets)
     for body in model.bodies:
         body.setLinearVel((0.0, 0.0, 0.0))
         body.setAngularVel((0.0, 0.0, 0.0))

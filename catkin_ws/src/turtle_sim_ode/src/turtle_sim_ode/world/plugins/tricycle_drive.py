@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from typing import Mapping, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, JointHandle
+from turtle_sim_ode.models.joint_positions import move_joints
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.physics import ode_constants as oc
@@ -216,7 +217,7 @@ class TricycleMotors:
             self.steering.joint.setParam(oc.PARAM_VEL, steering)
         else:
             steering = self._within_limits(angle)
-            self._model.move_joints({self.steering.name: steering})
+            move_joints(self._model, {self.steering.name: steering})
         self.applied = (wheel, steering)
 
     def _within_limits(self, angle: float) -> float:
