@@ -94,6 +94,16 @@ def test_joint_state(names):
     assert packed == genpy_bytes(joints)
 
 
+@pytest.mark.parametrize("names", [["front_steering_joint", "front_wheel_joint"], []])
+def test_joint_state_with_zero_efforts(names):
+    positions, velocities = numbers(len(names)), numbers(len(names))
+    joints = with_header(JointState(), "")
+    joints.name, joints.position, joints.velocity = names, list(positions), list(velocities)
+    joints.effort = [0.0] * len(names)
+    packed = ros_wire.JointStatePacker(names, zero_efforts=True).pack(SEQ, SECS, NSECS, positions, velocities)
+    assert packed == genpy_bytes(joints)
+
+
 def test_imu():
     values = numbers(4), numbers(9), numbers(3), numbers(9), numbers(3), numbers(9)
     imu = with_header(Imu(), "imu_link")

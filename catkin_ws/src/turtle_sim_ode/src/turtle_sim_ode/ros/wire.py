@@ -239,18 +239,21 @@ class TransformPacker:
 
 
 class JointStatePacker:
-    """sensor_msgs/JointState of fixed joint names and frame_id: positions and velocities, no efforts."""
+    """sensor_msgs/JointState of fixed joint names and frame_id: positions and velocities; no efforts, or a zero
+    effort a joint with ``zero_efforts`` (as a Gazebo plugin reports a motor-driven joint's GetForce)."""
 
-    def __init__(self, names: Sequence[str], frame_id: str = "") -> None:
+    def __init__(self, names: Sequence[str], frame_id: str = "", zero_efforts: bool = False) -> None:
         count = len(names)
         fixed = _string(frame_id) + struct.pack("<I", count) + b"".join(_string(name) for name in names)
+        efforts = count if zero_efforts else 0
         self._fixed = fixed
         self._count = count
-        self._struct = struct.Struct("<" + _HEADER % len(fixed) + "I%ddI%ddI" % (count, count))
+        self._efforts = struct.pack("<I%dd" % efforts, efforts, *([0.0] * efforts))
+        self._struct = struct.Struct("<" + _HEADER % len(fixed) + "I%ddI%dd%ds" % (count, count, len(self._efforts)))
 
     def pack(self, seq: int, secs: int, nsecs: int, positions: Sequence[float], velocities: Sequence[float]) -> bytes:
         count = self._count
-        return self._struct.pack(seq, secs, nsecs, self._fixed, count, *positions, count, *velocities, 0)
+        return self._struct.pack(seq, secs, nsecs, self._fixed, count, *positions, count, *velocities, self._efforts)
 
 
 class ImuPacker:

@@ -24,9 +24,9 @@ from turtle_sim_ode.models.builder import (
     _rotated_inertia,
     compose,
     inverse,
-    quat_multiply,
     quat_rotate,
 )
+from turtle_sim_ode.models.joint_positions import move_joints
 from turtle_sim_ode.models.urdf import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
@@ -114,42 +114,10 @@ def _set_rigid_twist(bodies: Sequence[ode.Body], origin: Vec3, linear: Vec3, ang
         body.setAngularVel(angular)
 
 
-def _subtree(body: ode.Body, children: Dict[int, List[JointHandle]]) -> List[ode.Body]:
-    """``body`` and every body below it in the joint tree."""
-    bodies = [body]
-    for current in bodies:
-        bodies.extend(handle.joint.getBody(0) for handle in children.get(id(current), []))
-    return bodies
-
-
 def _set_configuration(model: BuiltModel, targets: Dict[str, float]) -> None:
     """Move the bodies below each named joint so it is at its target position; the root body
     stays, every body of the model comes to rest."""
-    children: Dict[int, List[JointHandle]] = {}
-    for handle in model.joints.values():
-        children.setdefault(id(handle.joint.getBody(1)), []).append(handle)
-    queue = [model.links[model.root_link].body]
-    for parent in queue:  # parents before children; ``queue`` grows while iterating
-        for handle in children.get(id(parent), []):
-            child = handle.joint.getBody(0)
-            queue.append(child)
-            if handle.name not in targets:
-                continue
-            if handle.type == "continuous":
-                handle.track_turns()
-            delta = targets[handle.name] - handle.angle()
-            axis = handle.joint.getAxis()
-            if handle.type == "prismatic":
-                for body in _subtree(child, children):
-                    body.setPosition(_add(body.getPosition(), tuple(a * delta for a in axis)))
-            else:
-                anchor = handle.joint.getAnchor()
-                turn = (math.cos(delta / 2),) + tuple(math.sin(delta / 2) * a for a in axis)
-                for body in _subtree(child, children):
-                    arm = quat_rotate(turn, _sub(body.getPosition(), anchor))
-                    body.setPosition(_add(anchor, arm))
-                    body.setQuaternion(quat_multiply(turn, body.getQuaternion()))
-            handle.resync(targets[handle.name])
+    move_joints(model, targets)
     for body in model.bodies:
         body.setLinearVel((0.0, 0.0, 0.0))
         body.setAngularVel((0.0, 0.0, 0.0))

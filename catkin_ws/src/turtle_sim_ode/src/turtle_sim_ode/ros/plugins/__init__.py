@@ -28,6 +28,7 @@ from turtle_sim_ode.ros.plugins import (
     ros_control,
     skid_steer_drive,
     vacuum_gripper,
+    tricycle_drive,
     velodyne,
 )
 from turtle_sim_ode.ros.settings import SimulatorSettings
@@ -51,6 +52,7 @@ from turtle_sim_ode.world.plugins.planar_move import PlanarMoveConfig
 from turtle_sim_ode.world.plugins.ros_control import RosControlPluginConfig
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
 from turtle_sim_ode.world.plugins.vacuum_gripper import VacuumGripperConfig
+from turtle_sim_ode.world.plugins.tricycle_drive import TricycleConfig
 from turtle_sim_ode.world.simulation import Simulation
 
 Adapter = Callable[[ModelContext, object], List[Periodic]]
@@ -59,6 +61,7 @@ ADAPTERS: Dict[type, Adapter] = {
     DriveConfig: diff_drive.interfaces,
     SkidSteerConfig: skid_steer_drive.interfaces,
     PlanarMoveConfig: planar_move.interfaces,
+    TricycleConfig: tricycle_drive.interfaces,
     GroundTruthConfig: p3d.interfaces,
     JointStatesConfig: joint_state_publisher.interfaces,
     ImuConfig: imu.interfaces,

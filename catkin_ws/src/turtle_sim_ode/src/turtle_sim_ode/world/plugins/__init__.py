@@ -28,6 +28,7 @@ from turtle_sim_ode.world.plugins import (
     ros_control,
     skid_steer_drive,
     vacuum_gripper,
+    tricycle_drive,
 )
 from turtle_sim_ode.world.plugins.diff_drive import DIFF_DRIVE, DiffDriveRobot, DriveConfig
 from turtle_sim_ode.world.plugins.imu import IMU
@@ -44,6 +45,7 @@ MODULES = (
     diff_drive,
     skid_steer_drive,
     planar_move,
+    tricycle_drive,
     p3d,
     joint_state_publisher,
     imu,

@@ -1,0 +1,123 @@
+"""gazebo_ros_tricycle_drive's topics (world.plugins.tricycle_drive), as GazeboRosTricycleDrive has them:
+``commandTopic`` (geometry_msgs/Twist: linear.x the speed, angular.z the steering angle) in; at ``updateRate``,
+whether anyone listens or not (UpdateChild, publishOdometry): ``odometryTopic`` (nav_msgs/Odometry) and tf
+``odometryFrame`` -> ``robotBaseFrame``, plus, if asked, tf of each of the four joints (publishWheelTF) and
+``joint_states`` (publishWheelJointState). Frames under the ``tf_prefix`` parameter (GazeboRos::resolveTF,
+tf::getPrefixParam: none when it is not set)."""
+from __future__ import annotations
+
+import math
+from typing import List, Optional, Tuple
+
+import rospy
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from sensor_msgs.msg import JointState
+
+from turtle_sim_ode.models.builder import compose, inverse
+from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, subscriber
+from turtle_sim_ode.ros.plugin_topics import Vec3, period, resolve_frame, tf_prefix
+from turtle_sim_ode.ros.plugins.drive import command_drive
+from turtle_sim_ode.ros.wire import JointStatePacker, OdometryPacker, PackedPublisher, Quat, TransformPacker, release
+from turtle_sim_ode.world.plugins.tricycle_drive import TricycleConfig, TricycleRobot
+from turtle_sim_ode.world.simulation import Simulation
+
+# publishOdometry's pose covariance (x, y 1e-5; z, roll, pitch 1e12; yaw 1e-3); its twist covariance stays 0.
+POSE_COVARIANCE = tuple({0: 1e-5, 7: 1e-5, 14: 1e12, 21: 1e12, 28: 1e12, 35: 1e-3}.get(i, 0.0) for i in range(36))
+
+
+def world_odometry(robot: TricycleRobot) -> Tuple[Vec3, Quat, Vec3, Vec3]:
+    """publishOdometry with odometrySource world: the model's pose (z included) and its world velocity, x and y
+    turned into the yaw frame, with the world's yaw rate."""
+    model = robot.model
+    position, orientation = model.link_pose(model.root_link)
+    linear, angular = model.link_twist(model.root_link)
+    x, y, z, w = orientation
+    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    cos_yaw, sin_yaw = math.cos(yaw), math.sin(yaw)
+    twist = (cos_yaw * linear[0] + sin_yaw * linear[1], cos_yaw * linear[1] - sin_yaw * linear[0], 0.0)
+    return position, orientation, twist, (0.0, 0.0, angular[2])
+
+
+def encoder_odometry(robot: TricycleRobot) -> Tuple[Vec3, Quat, Vec3, Vec3]:
+    """publishOdometry with odometrySource encoder: UpdateOdometryEncoder's pose (z 0) and twist (odometry-frame
+    dx/dt, dy/dt and the yaw rate)."""
+    odometry = robot.odometry
+    half = odometry.yaw / 2
+    linear = (odometry.linear[0], odometry.linear[1], 0.0)
+    return (
+        (odometry.x, odometry.y, 0.0),
+        (0.0, 0.0, math.sin(half), math.cos(half)),
+        linear,
+        (0.0, 0.0, odometry.angular),
+    )
+
+
+class TricycleInterface(Periodic):
+    def __init__(
+        self, name: str, robot: TricycleRobot, sim: Simulation, tf: Optional[PackedPublisher], namespace: str
+    ) -> None:
+        config = robot.config
+        super().__init__(period(config.update_rate))
+        self.name = name
+        self.robot = robot
+        self._sim = sim
+        self._tf = tf
+        namespace = namespace or config.robot_namespace
+        prefix = tf_prefix(namespace, otherwise="")  # tf::getPrefixParam: "" when no tf_prefix parameter is set
+        odom_frame, base_frame = resolve_frame(prefix, config.odometry_frame), resolve_frame(prefix, config.base_frame)
+        self._command = subscriber(plugin_topic(namespace, config.command_topic), Twist, self._on_velocity, 1)
+        self._odom_pub = packed_publisher(plugin_topic(namespace, config.odometry_topic), Odometry)
+        self._odom_packer = OdometryPacker(odom_frame, base_frame, POSE_COVARIANCE)
+        self._tf_packer = TransformPacker(odom_frame, base_frame)
+        self._odometry = encoder_odometry if config.odometry_source == "encoder" else world_odometry
+        joints = config.joints_needed
+        links = robot.model.robot.joints
+        # publishWheelTF: the joint's parent link -> a frame named after the joint, at the child link's pose in the
+        # model's frame (Link::RelativePose).
+        self._wheel_tf: List[Tuple[str, TransformPacker]] = [
+            (
+                links[joint].child,
+                TransformPacker(resolve_frame(prefix, links[joint].parent), resolve_frame(prefix, joint)),
+            )
+            for joint in joints
+        ]
+        self._joint_pub: Optional[PackedPublisher] = None
+        if config.publish_wheel_joint_state:
+            self._joint_pub = packed_publisher(plugin_topic(namespace, "joint_states"), JointState)
+        self._joint_packer = JointStatePacker(list(joints), zero_efforts=True)
+
+    def _on_velocity(self, twist: Twist) -> None:
+        command_drive(self.name, self.robot, twist, self._sim.sim_time)
+
+    def publish(self, stamp: rospy.Time, now: float) -> None:
+        secs, nsecs = stamp.secs, stamp.nsecs
+        position, orientation, linear, angular = self._odometry(self.robot)
+        self._odom_pub.publish(self._odom_packer.pack, secs, nsecs, position, orientation, linear, angular)
+        if self._tf is not None:
+            self._tf.publish(self._tf_packer.pack, secs, nsecs, position, orientation)
+            if self.robot.config.publish_wheel_tf:
+                model = self.robot.model
+                back = inverse(model.model_transform())
+                for child, packer in self._wheel_tf:
+                    translation, (w, x, y, z) = compose(back, model.link_transform(child))
+                    self._tf.publish(packer.pack, secs, nsecs, translation, (x, y, z, w))
+        if self._joint_pub is not None:
+            joints = self.robot.wheels
+            positions = tuple(joint.angle() for joint in joints)
+            self._joint_pub.publish(self._joint_packer.pack, secs, nsecs, positions, tuple(j.rate() for j in joints))
+
+    def close(self) -> None:
+        release(self._command)
+        release(self._odom_pub)
+        if self._joint_pub is not None:
+            release(self._joint_pub)
+
+
+def interfaces(context: ModelContext, config: TricycleConfig) -> List[Periodic]:
+    """The model's drive (the first drive plugin; the others were warned about at spawn)."""
+    robot = context.sim.robots.get(context.name)
+    if not isinstance(robot, TricycleRobot) or robot.config is not config:
+        return []
+    tf = context.tf_broadcaster if context.settings.publish_tf else None
+    return [TricycleInterface(context.name, robot, context.sim, tf, context.namespace)]
