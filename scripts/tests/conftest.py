@@ -1,4 +1,5 @@
 """Helpers shared by the workspace tests that start ROS processes; scripts/lib (the tools' modules) on the path."""
+import json
 import os
 import shutil
 import subprocess
@@ -28,3 +29,26 @@ def ros_missing():
             result.stdout.strip().splitlines()[-1],
         )
     return None
+
+
+def run_bench(script, args, json_path, marker, timeout):
+    """Run scripts/``script`` with ``args`` and ``--json json_path`` on the ROS Python (skipped where ROS is missing)
+    and return the JSON it wrote; the test fails, with the end of its output, if it overruns ``timeout`` s (then it
+    gets SIGTERM: the benchmarks stop their masters and nodes on it), exits non-zero or never prints ``marker``."""
+    import pytest
+
+    reason = ros_missing()
+    if reason:
+        pytest.skip(reason)
+    command = [ROS_PYTHON, os.path.join(os.path.dirname(LIB), script)] + list(args) + ["--json", json_path]
+    bench = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+    try:
+        output, _ = bench.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        bench.terminate()
+        output, _ = bench.communicate()
+        pytest.fail("%s %s took over %d s:\n%s" % (script, " ".join(args), timeout, output[-5000:]))
+    assert bench.returncode == 0, output[-5000:]
+    assert marker in output, output[-5000:]
+    with open(json_path) as json_file:
+        return json.load(json_file)

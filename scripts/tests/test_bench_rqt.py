@@ -1,38 +1,18 @@
 """scripts/bench_rqt.py on a short run: it runs, stops what it started, and every section has figures; the plot
 kept up with turtlesim and the console with its flood (the full run's figures are quoted in the READMEs)."""
-import json
 import math
-import os
-import subprocess
 
 import pytest
-from conftest import ROS_PYTHON, ros_missing
+from conftest import run_bench
 
-REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-BENCH = os.path.join(REPO, "scripts", "bench_rqt.py")
 TIMEOUT_S = 600  # about 60 s on 2 idle cores
 
 
 @pytest.fixture(scope="module")
 def results(tmp_path_factory):
-    reason = ros_missing()
-    if reason:
-        pytest.skip(reason)
     json_path = str(tmp_path_factory.mktemp("bench") / "bench_rqt.json")
-    short = ["--minutes", "0.25", "--data-minutes", "0.5", "--console-seconds", "3", "--json", json_path]
-    bench = subprocess.Popen(
-        [ROS_PYTHON, BENCH] + short, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True
-    )
-    try:
-        output, _ = bench.communicate(timeout=TIMEOUT_S)
-    except subprocess.TimeoutExpired:
-        bench.terminate()  # SIGTERM: the benchmark stops its master and nodes
-        output, _ = bench.communicate()
-        pytest.fail("bench_rqt.py took over %d s:\n%s" % (TIMEOUT_S, output[-5000:]))
-    assert bench.returncode == 0, output[-5000:]
-    assert "CPU stolen by the host" in output, output[-5000:]
-    with open(json_path) as json_file:
-        return json.load(json_file)
+    short = ["--minutes", "0.25", "--data-minutes", "0.5", "--console-seconds", "3"]
+    return run_bench("bench_rqt.py", short, json_path, "CPU stolen by the host", TIMEOUT_S)
 
 
 def test_plot_sections(results):

@@ -1,16 +1,14 @@
 """scripts/bench_sim.py --quick --no-peer: it runs, stops what it started and writes every section with positive, finite
 figures. Its targets are not checked here: they judge the simulator, not the benchmark."""
-import json
 import math
 import os
 import re
 import subprocess
 
 import pytest
-from conftest import ROS_PYTHON, ros_missing
+from conftest import run_bench
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-BENCH = os.path.join(REPO, "scripts", "bench_sim.py")
 TIMEOUT_S = 600  # --quick takes about 90 s on 2 cores; a busy machine may take longer
 SECTIONS = ("physics_only", "full_node", "real_time", "launch", "cameras", "ros_control")
 # 0 = unthrottled; linearity needs three robot counts, --quick has two ([] stands for any list index)
@@ -43,26 +41,8 @@ def bad_figures(value, path):
 
 @pytest.fixture(scope="module")
 def results(tmp_path_factory):
-    reason = ros_missing()
-    if reason:
-        pytest.skip(reason)
     json_path = str(tmp_path_factory.mktemp("bench") / "bench_sim.json")
-    bench = subprocess.Popen(
-        [ROS_PYTHON, BENCH, "--quick", "--no-peer", "--json", json_path],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        universal_newlines=True,
-    )
-    try:
-        output, _ = bench.communicate(timeout=TIMEOUT_S)
-    except subprocess.TimeoutExpired:
-        bench.terminate()  # SIGTERM: the benchmark stops its masters and nodes
-        output, _ = bench.communicate()
-        pytest.fail("bench_sim.py --quick took over %d s:\n%s" % (TIMEOUT_S, output[-5000:]))
-    assert bench.returncode == 0, output[-5000:]
-    assert "targets" in output, output[-5000:]
-    with open(json_path) as json_file:
-        return json.load(json_file)
+    return run_bench("bench_sim.py", ["--quick", "--no-peer"], json_path, "targets", TIMEOUT_S)
 
 
 def test_every_section_has_positive_finite_figures(results):

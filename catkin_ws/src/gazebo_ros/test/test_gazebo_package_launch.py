@@ -9,10 +9,7 @@ time, it must cover `distance` +- `distance_tolerance` m, measured by /gazebo/ge
 import math
 import os
 import shlex
-import signal
-import subprocess
 import sys
-import tempfile
 import threading
 import time
 import unittest
@@ -23,6 +20,7 @@ from gazebo_msgs.msg import ModelStates
 from gazebo_msgs.srv import GetModelProperties, GetModelState
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Clock
+from workspace_testing.processes import LoggedProcess
 
 
 class SimClock:
@@ -45,59 +43,33 @@ class SimClock:
 
 class GazeboPackageLaunch(unittest.TestCase):
     launch = None
-    log = None
 
     @classmethod
     def setUpClass(cls) -> None:
-        cls.log = tempfile.TemporaryFile(mode="w+")
-        cls.launch = subprocess.Popen(
-            ["roslaunch"] + shlex.split(rospy.get_param("~launch")),
-            stdout=cls.log,
-            stderr=subprocess.STDOUT,
-            start_new_session=True,
-            env=dict(os.environ, PYTHONUNBUFFERED="1"),
-        )
+        command = ["roslaunch"] + shlex.split(rospy.get_param("~launch"))
+        cls.launch = LoggedProcess(command, env=dict(os.environ, PYTHONUNBUFFERED="1"), grace=10.0)
         cls.model = rospy.get_param("~model")
         cls.startup_timeout = float(rospy.get_param("~startup_timeout", 180.0))
         cls.deadline = time.monotonic() + cls.startup_timeout
         # rostest ends a test node that overruns its time-limit with a signal: the launch must not outlive it
-        rospy.on_shutdown(cls.stop_launch)
+        rospy.on_shutdown(cls.launch.stop)
 
     @classmethod
     def tearDownClass(cls) -> None:
-        cls.stop_launch()
-        cls.log.close()
-
-    @classmethod
-    def stop_launch(cls) -> None:
-        if cls.launch.poll() is not None:
-            return
-        for sig, grace in ((signal.SIGINT, 10.0), (signal.SIGKILL, 5.0)):
-            try:
-                os.killpg(cls.launch.pid, sig)
-                cls.launch.wait(grace)
-                break
-            except ProcessLookupError:
-                break
-            except subprocess.TimeoutExpired:
-                continue
-
-    def launch_output(self) -> str:
-        self.log.seek(0)
-        return self.log.read()[-6000:]
+        cls.launch.close()
 
     def wait_for_model(self) -> None:
         """Until the launch file's spawn_model has spawned the robot (model_states lists it)."""
         try:
             rospy.wait_for_service("/gazebo/get_model_state", timeout=max(1.0, self.deadline - time.monotonic()))
         except rospy.ROSException:
-            self.fail("no /gazebo/get_model_state within %g s:\n%s" % (self.startup_timeout, self.launch_output()))
+            self.fail("no /gazebo/get_model_state within %g s:\n%s" % (self.startup_timeout, self.launch.output()))
         while not rospy.is_shutdown():
-            self.assertIsNone(self.launch.poll(), "roslaunch ended:\n" + self.launch_output())
+            self.assertIsNone(self.launch.process.poll(), "roslaunch ended:\n" + self.launch.output())
             states = rospy.wait_for_message("/gazebo/model_states", ModelStates, timeout=self.startup_timeout)
             if self.model in states.name:
                 return
-            self.assertLess(time.monotonic(), self.deadline, "model never spawned:\n" + self.launch_output())
+            self.assertLess(time.monotonic(), self.deadline, "model never spawned:\n" + self.launch.output())
 
     def model_pose(self):
         state = rospy.ServiceProxy("/gazebo/get_model_state", GetModelState)(self.model, "world")

@@ -3,11 +3,7 @@
 turtlebot3_gazebo writes turtlebot3_world.launch, puts the world's Y_UP Collada wall where Gazebo puts it: the
 robot's laser sees it at the distance Gazebo's loader gives, and driven into it the robot stops at its near face."""
 import math
-import os
-import signal
-import subprocess
 import sys
-import tempfile
 import time
 import unittest
 
@@ -16,6 +12,7 @@ import rostest
 from gazebo_msgs.msg import ModelStates
 from geometry_msgs.msg import Twist, Vector3
 from sensor_msgs.msg import LaserScan
+from workspace_testing.processes import LoggedProcess
 
 MODEL = "sim_fixture_bot"
 # Where Gazebo puts the wall. gazebo-classic gazebo/common/ColladaLoader.cc, ColladaLoader::Load scales the mesh by
@@ -39,15 +36,13 @@ PENETRATION_TOLERANCE = 0.02  # m: ODE's contact surface layer and soft contacts
 
 class YUpWall(unittest.TestCase):
     launch = None
-    log = None
 
     @classmethod
     def setUpClass(cls) -> None:
         cls.spawn_x = float(rospy.get_param("~spawn_x"))
-        cls.log = tempfile.TemporaryFile(mode="w+")
         command = ["roslaunch", "tso_mesh_worlds", "y_up_wall_world.launch", "x_pos:=%g" % cls.spawn_x]
-        cls.launch = subprocess.Popen(command, stdout=cls.log, stderr=subprocess.STDOUT, start_new_session=True)
-        rospy.on_shutdown(cls.stop_launch)  # rostest's time-limit signal must not leave the launch behind
+        cls.launch = LoggedProcess(command)
+        rospy.on_shutdown(cls.launch.stop)  # rostest's time-limit signal must not leave the launch behind
         cls.states = None
         cls.driven_x = None  # the robot's x from each /gazebo/model_states while test_b drives
         rospy.Subscriber("/gazebo/model_states", ModelStates, cls.on_states, queue_size=10)
@@ -60,30 +55,14 @@ class YUpWall(unittest.TestCase):
 
     @classmethod
     def tearDownClass(cls) -> None:
-        cls.stop_launch()
-        cls.log.close()
-
-    @classmethod
-    def stop_launch(cls) -> None:
-        for sig, grace in ((signal.SIGINT, 15.0), (signal.SIGKILL, 5.0)):
-            if cls.launch.poll() is not None:
-                return
-            os.killpg(cls.launch.pid, sig)
-            try:
-                cls.launch.wait(grace)
-            except subprocess.TimeoutExpired:
-                continue
-
-    def launch_output(self) -> str:
-        self.log.seek(0)
-        return self.log.read()[-6000:]
+        cls.launch.close()
 
     def robot_x(self) -> float:
         """The robot's ground-truth x from /gazebo/model_states, once the launch file's spawn_model has spawned it."""
         deadline = time.monotonic() + float(rospy.get_param("~startup_timeout"))
         while self.states is None or MODEL not in self.states.name:
-            self.assertIsNone(self.launch.poll(), "roslaunch ended:\n" + self.launch_output())
-            self.assertLess(time.monotonic(), deadline, "robot never spawned:\n" + self.launch_output())
+            self.assertIsNone(self.launch.process.poll(), "roslaunch ended:\n" + self.launch.output())
+            self.assertLess(time.monotonic(), deadline, "robot never spawned:\n" + self.launch.output())
             time.sleep(0.1)  # wall time: sim time may not run yet
         return self.states.pose[self.states.name.index(MODEL)].position.x
 

@@ -7,11 +7,14 @@ import math
 import random
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.hector_imu import HECTOR_IMU, ErrorModel, HectorImu, SensorError
+from turtle_sim_ode.world.plugins.hector_sensor_model import RECONFIGURE_FIELDS, reconfigure
 from turtle_sim_ode.world.simulation import Simulation
 
 BOX_SDF = """<sdf version="1.6"><model name="box"><link name="imu_link">
@@ -125,3 +128,81 @@ def test_accel_bias_tilts_the_orientation_and_yaw_drift_turns_it() -> None:
     expected = (cy, -sy * tilt, cy * tilt, sy)  # (cos, 0, 0, sin) * (1, 0, tilt, 0)
     norm = math.sqrt(sum(c * c for c in expected))
     assert reading.orientation_error == pytest.approx(tuple(c / norm for c in expected), abs=1e-6)
+
+
+def test_xyz_offset_changes_nothing_published() -> None:
+    """GazeboRosIMU::Load reads <xyzOffset> into offset_.Pos(); Update never uses it (the position line is commented
+    out), so the readings are those without it."""
+    readings = []
+    for extra in ({}, {"xyzOffset": "0.3 -0.2 0.5"}):
+        sim, imu = imu_on_box(height=5.0, **extra)
+        body = sim.models["box"].links["imu_link"].body
+        imu.update(sim.sim_time)
+        for _ in range(20):
+            body.setAngularVel((0.4, 0.0, 1.5))
+            sim.step()
+            reading = imu.update(sim.sim_time)
+        readings.append(reading)
+    assert readings[0] == readings[1]
+
+
+REFUSED_LEVEL = ~0  # dynamic_reconfigure servers' first callback (C++ and Python alike)
+
+
+def test_reconfigure_first_call_reports_the_tags_as_scalar_value_averages_them() -> None:
+    """sensor_model.h dynamicReconfigureCallback, level != 1: the config gets the model's values, a vector's as the
+    mean of its axes (helpers::scalar_value), a scalar's (yaw) as it is; the model stays."""
+    error = SensorError(
+        ErrorModel(offset=(0.1, 0.2, 0.6), gaussian_noise=(0.3, 0.3, 0.0), scale_error=(1.0, 1.0, 1.3)),
+        random.Random(1),
+    )
+    before = error.model
+    values = reconfigure(error, dict.fromkeys(RECONFIGURE_FIELDS, 0.0), REFUSED_LEVEL)
+    assert values == pytest.approx(
+        {"offset": 0.3, "gaussian_noise": 0.2, "scale_error": 1.1, "drift": 0.0, "drift_frequency": 1 / 3600}
+    )
+    assert error.model is before
+    yaw = SensorError(ErrorModel(offset=(0.2, 0.2, 0.2)), random.Random(1))
+    assert reconfigure(yaw, dict.fromkeys(RECONFIGURE_FIELDS, 0.0), 0, scalar=True)["offset"] == 0.2
+
+
+def test_reconfigure_level_one_sets_every_axis_and_the_readings_follow() -> None:
+    """level 1 (every SensorModel.cfg field's level): each field to the config's value on every axis."""
+    error = SensorError(ErrorModel(offset=(0.1, 0.2, 0.3)), random.Random(1))
+    values = dict(gaussian_noise=0.0, offset=0.5, drift=0.0, drift_frequency=0.01, scale_error=2.0)
+    assert reconfigure(error, values, 1) == pytest.approx(values)
+    assert error.model == ErrorModel((0.5,) * 3, (0.0,) * 3, (0.01,) * 3, (0.0,) * 3, (2.0,) * 3)
+    assert error.apply((1.0, -1.0, 0.0), 0.0) == pytest.approx((2.5, -1.5, 0.5))
+
+
+def test_reconfigured_accel_noise_changes_the_orientation_covariance_only() -> None:
+    """Load fills the rate and acceleration covariances once; Update the orientation's, from the accel and yaw
+    noises of each update."""
+    _, imu = imu_on_box(accelGaussianNoise="0.1 0.1 0.1", rateGaussianNoise="0.02 0.02 0.02")
+    orientation, rate, accel = imu.covariances()
+    values = dict(gaussian_noise=0.5, offset=0.0, drift=0.0, drift_frequency=0.0, scale_error=1.0)
+    reconfigure(imu.accel_error, values, 1)
+    reconfigure(imu.yaw_error, values, 1, scalar=True)
+    after = imu.covariances()
+    assert after[1:] == (rate, accel)
+    assert after[0][0] == pytest.approx(0.25 / 9.81**2) and after[0][8] == pytest.approx(0.25)
+    assert orientation[0] == pytest.approx(0.01 / 9.81**2) and orientation[8] == 0.0
+
+
+@given(
+    st.fixed_dictionaries({name: st.floats(allow_nan=True, allow_infinity=True) for name in RECONFIGURE_FIELDS}),
+    st.sampled_from([1, 0, REFUSED_LEVEL]),
+)
+def test_reconfigure_never_takes_a_non_finite_value(values, level) -> None:  # type: ignore[no-untyped-def]
+    error = SensorError(ErrorModel(), random.Random(1))
+    try:
+        reported = reconfigure(error, values, level)
+    except ValueError as refused:
+        assert level == 1 and any(not math.isfinite(v) for v in values.values()), refused
+        assert error.model == ErrorModel()
+        return
+    assert all(math.isfinite(v) for v in reported.values())
+    if level == 1:
+        assert reported == pytest.approx(values)
+    else:
+        assert error.model == ErrorModel()

@@ -4,7 +4,8 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
-from typing import List
+import tempfile
+from typing import Dict, List, Optional
 
 
 def descendants(pid: int) -> List[int]:
@@ -43,3 +44,30 @@ def stop_group(process: subprocess.Popen, grace: float = 15.0) -> None:
             os.kill(pid, signal.SIGKILL)
         except ProcessLookupError:
             pass
+
+
+class LoggedProcess:
+    """A command (a test's ``roslaunch``, say) started in a session of its own, its output kept in a temporary file
+    for failure messages; ``stop`` ends it with ``stop_group``, ``close`` stops it and drops the output."""
+
+    def __init__(self, command: List[str], env: Optional[Dict[str, str]] = None, grace: float = 15.0) -> None:
+        self._log = tempfile.TemporaryFile(mode="w+")
+        self._grace = grace
+        self.process = subprocess.Popen(
+            command, stdout=self._log, stderr=subprocess.STDOUT, start_new_session=True, env=env
+        )
+
+    def output(self, tail: int = 6000) -> str:
+        """The last ``tail`` characters the command printed (stdout and stderr)."""
+        self._log.flush()
+        self._log.seek(0)
+        return self._log.read()[-tail:]
+
+    def stop(self) -> None:
+        """Stop the command and what it started (SIGINT, then SIGKILL after ``grace`` s); nothing once it ended."""
+        if self.process.poll() is None:
+            stop_group(self.process, self._grace)
+
+    def close(self) -> None:
+        self.stop()
+        self._log.close()

@@ -3,7 +3,7 @@ import os
 import subprocess
 import time
 
-from workspace_testing.processes import descendants, stop_group
+from workspace_testing.processes import LoggedProcess, descendants, stop_group
 
 
 def alive(pid: int) -> bool:
@@ -32,3 +32,17 @@ def test_a_child_in_a_session_of_its_own_is_stopped_too() -> None:
     time.sleep(0.2)
     assert process.poll() is not None
     assert not [pid for pid in below if alive(pid)]
+
+
+def test_a_logged_process_keeps_its_output_and_stops_with_its_group() -> None:
+    logged = LoggedProcess(["bash", "-c", "echo started; echo to stderr >&2; exec sleep 60"], grace=0.5)
+    deadline = time.monotonic() + 10
+    while "to stderr" not in logged.output() and time.monotonic() < deadline:  # until bash has printed
+        time.sleep(0.05)
+    assert logged.output() == "started\nto stderr\n"
+    assert logged.output(tail=7) == "stderr\n"
+    assert logged.process.poll() is None
+    logged.stop()
+    assert logged.process.poll() is not None
+    logged.stop()  # a second stop (rospy.on_shutdown after tearDownClass) does nothing
+    logged.close()

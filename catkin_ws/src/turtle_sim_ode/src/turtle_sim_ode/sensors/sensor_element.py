@@ -4,11 +4,32 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, Optional, Sequence, Tuple
+from typing import Dict, NamedTuple, Optional, Sequence, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, child_text, read_number
+from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
 from turtle_sim_ode.physics import sanity
+
+
+def sensor_what(sensor: Element, default_name: str) -> Tuple[str, str]:
+    """The sensor's name (``default_name`` where it has none) and the ``<sensor name='...'>`` its errors start with."""
+    name = sensor.get("name", default_name)
+    return name, f"<sensor name='{name}'>"
+
+
+class SensorPlugin(NamedTuple):
+    """What a sensor plugin's reader starts from (``sensor_plugin``)."""
+
+    name: str  # the sensor's
+    what: str  # "<sensor name='...'>": where the sensor's errors point
+    params: Dict[str, str]  # the plugin's tags (models.text.plugin_params)
+    plugin_what: str  # "<sensor name='...'> <plugin filename='...'>": where the plugin's tag errors point
+
+
+def sensor_plugin(sensor: Element, plugin: Element, default_name: str) -> SensorPlugin:
+    """The sensor's name and error prefix, with its plugin's tags and error prefix."""
+    name, what = sensor_what(sensor, default_name)
+    return SensorPlugin(name, what, plugin_params(plugin), f"{what} <plugin filename='{plugin.get('filename')}'>")
 
 
 def number_at(element: Optional[Element], path: str, default: float, what: str) -> float:

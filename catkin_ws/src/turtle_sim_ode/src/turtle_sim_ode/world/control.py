@@ -18,7 +18,6 @@ import ode
 from turtle_sim_ode.models.builder import (
     BuiltModel,
     JointHandle,
-    Quat,
     Transform,
     Vec3,
     _rotated_inertia,
@@ -26,13 +25,13 @@ from turtle_sim_ode.models.builder import (
     inverse,
     quat_rotate,
 )
-from turtle_sim_ode.models.joint_positions import move_joints
 from turtle_sim_ode.models.urdf import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsWorld
 from turtle_sim_ode.world.plugins import DriveRobot
 from turtle_sim_ode.world.joint_effort import effort_applier
+from turtle_sim_ode.world.kinematics import add, conjugate, cross, set_configuration, set_rigid_twist, sub
 from turtle_sim_ode.world.records import (
     JointProperties,
     LinkProperties,
@@ -89,38 +88,6 @@ _JOINT_PARAMS = (
 )
 # Magnitude limits of the ODEJointProperties fields that drive a joint.
 _JOINT_LIMITS = {"fmax": MAX_FORCE, "vel": MAX_SPEED}
-
-
-def _add(a: Vec3, b: Vec3) -> Vec3:
-    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
-
-
-def _sub(a: Vec3, b: Vec3) -> Vec3:
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def _cross(a: Vec3, b: Vec3) -> Vec3:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _conjugate(q: Quat) -> Quat:
-    return (q[0], -q[1], -q[2], -q[3])
-
-
-def _set_rigid_twist(bodies: Sequence[ode.Body], origin: Vec3, linear: Vec3, angular: Vec3) -> None:
-    """Move ``bodies`` as one rigid body: ``linear`` is the velocity of the point ``origin``."""
-    for body in bodies:
-        body.setLinearVel(_add(linear, _cross(angular, _sub(body.getPosition(), origin))))
-        body.setAngularVel(angular)
-
-
-def _set_configuration(model: BuiltModel, targets: Dict[str, float]) -> None:
-    """Move the bodies below each named joint so it is at its target position; the root body
-    stays, every body of the model comes to rest."""
-    move_joints(model, targets)
-    for body in model.bodies:
-        body.setLinearVel((0.0, 0.0, 0.0))
-        body.setAngularVel((0.0, 0.0, 0.0))
 
 
 class WorldControl:
@@ -198,10 +165,10 @@ class WorldControl:
         """As gazebo_ros: pose in the frame; velocities minus the frame's, in the frame's axes."""
         if frame is not None:
             frame_pose, frame_linear, frame_angular = frame
-            back = _conjugate(frame_pose[1])
+            back = conjugate(frame_pose[1])
             pose = compose(inverse(frame_pose), pose)
-            linear = quat_rotate(back, _sub(linear, frame_linear))
-            angular = quat_rotate(back, _sub(angular, frame_angular))
+            linear = quat_rotate(back, sub(linear, frame_linear))
+            angular = quat_rotate(back, sub(angular, frame_angular))
         position, (w, x, y, z) = pose
         return position, (x, y, z, w), linear, angular
 
@@ -228,7 +195,7 @@ class WorldControl:
             velocity = quat_rotate(frame_pose[1], velocity)
             spin = quat_rotate(frame_pose[1], spin)
             if moving_frame:
-                velocity, spin = _add(velocity, frame_linear), _add(spin, frame_angular)
+                velocity, spin = add(velocity, frame_linear), add(spin, frame_angular)
             vec3(pose[0], f"position relative to the world (from '{reference_frame}')", MAX_LENGTH)
         return pose, velocity, spin
 
@@ -256,7 +223,7 @@ class WorldControl:
         model = self._model(name)
         pose, linear, angular = self._absolute(position, quaternion, linear, angular, reference_frame, False)
         model.set_transform(pose)
-        _set_rigid_twist(model.bodies, model.link_transform(model.root_link)[0], linear, angular)
+        set_rigid_twist(model.bodies, model.link_transform(model.root_link)[0], linear, angular)
 
     def get_link_state(self, name: str, reference_frame: str = "") -> EntityState:
         """The link frame's pose and its origin's velocity."""
@@ -281,7 +248,7 @@ class WorldControl:
         position, quaternion = compose(pose, inverse(model.links[link].offset))
         body.setPosition(position)
         body.setQuaternion(quaternion)
-        _set_rigid_twist([body], pose[0], linear, angular)
+        set_rigid_twist([body], pose[0], linear, angular)
 
     # --- properties ---------------------------------------------------------------------
     def world_properties(self) -> WorldProperties:
@@ -559,7 +526,7 @@ class WorldControl:
                     )
         if not targets:
             return
-        _set_configuration(model, targets)
+        set_configuration(model, targets)
         now = self.physics.sim_time
         for robot in self.robots.values():
             if robot.model is model and any(wheel.name in targets for wheel in robot.wheels):
@@ -602,8 +569,8 @@ class WorldControl:
             (origin, rotation), _, _ = frame
             push = quat_rotate(rotation, push)
             turn = quat_rotate(rotation, turn)
-            lever = _add(quat_rotate(rotation, lever), _sub(origin, model.link_transform(link_name)[0]))
-        turn = _add(turn, _cross(lever, push))
+            lever = add(quat_rotate(rotation, lever), sub(origin, model.link_transform(link_name)[0]))
+        turn = add(turn, cross(lever, push))
         add_force, add_torque = body.addForce, body.addTorque
 
         def apply() -> None:

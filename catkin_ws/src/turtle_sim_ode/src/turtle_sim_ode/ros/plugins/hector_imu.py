@@ -1,20 +1,26 @@
 """hector_gazebo_plugins' IMU topics and services (world.plugins.hector_imu), as GazeboRosIMU has them under its
 robotNamespace: ``topicName`` (sensor_msgs/Imu in ``frameId``), ``biasTopicName`` (sensor_msgs/Imu: the orientation
 error, rate and acceleration biases), ``serviceName`` (std_srvs/Empty: the rate drift back to 0), and
-``topicName``/set_accel_bias, /set_rate_bias (hector_gazebo_plugins/SetBias: that drift), at the update rate."""
+``topicName``/set_accel_bias, /set_rate_bias (hector_gazebo_plugins/SetBias: that drift), at the update rate; and
+the dynamic_reconfigure servers ``topicName``/accel, /rate and /yaw (hector_gazebo_plugins/SensorModelConfig) over
+the error models, as GazeboRosIMU::Load sets them up when the topic is not empty."""
 from __future__ import annotations
 
-from typing import Any, List
+from typing import Any, Dict, List
 
 import rospy
+from dynamic_reconfigure.server import Server
+from hector_gazebo_plugins.cfg import SensorModelConfig
 from hector_gazebo_plugins.srv import SetBias, SetBiasResponse
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty, EmptyResponse
 
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic
 from turtle_sim_ode.ros.plugin_topics import period
+from turtle_sim_ode.ros.throttle import logwarn_every
 from turtle_sim_ode.ros.wire import ImuPacker, PackedPublisher, release
 from turtle_sim_ode.world.plugins.hector_imu import HectorImu, HectorImuConfig, SensorError
+from turtle_sim_ode.world.plugins.hector_sensor_model import current_values, reconfigure
 
 NO_COVARIANCE = (0.0,) * 9
 
@@ -39,13 +45,22 @@ class HectorImuPublisher(Periodic):
             self._bias_pub = packed_publisher(plugin_topic(namespace, config.bias_topic), Imu)
             self._publishers.append(self._bias_pub)
         self._packer = ImuPacker(frame)
-        self._covariances = imu.covariances()
         self._services: List[rospy.Service] = []
         if config.service:
             self._services.append(rospy.Service(plugin_topic(namespace, config.service), Empty, self._on_calibrate))
         for name, error in (("set_accel_bias", imu.accel_error), ("set_rate_bias", imu.rate_error)):
             handler = self._set_bias(error)
             self._services.append(rospy.Service(plugin_topic(namespace, config.topic + "/" + name), SetBias, handler))
+        self._reconfigure_servers: List[Server] = []
+        if config.topic:
+            for name, error, scalar in (
+                ("accel", imu.accel_error, False),
+                ("rate", imu.rate_error, False),
+                ("yaw", imu.yaw_error, True),
+            ):
+                where = rospy.resolve_name(plugin_topic(namespace, config.topic + "/" + name))
+                server = Server(SensorModelConfig, self._reconfigure(error, scalar, where), namespace=where)
+                self._reconfigure_servers.append(server)
 
     def _on_calibrate(self, _request: Any) -> EmptyResponse:
         self._imu.rate_error.reset((0.0, 0.0, 0.0))  # ServiceCallback: "imu is always calibrated in sim"
@@ -60,6 +75,20 @@ class HectorImuPublisher(Periodic):
 
         return handle
 
+    @staticmethod
+    def _reconfigure(error: SensorError, scalar: bool, where: str):  # type: ignore[no-untyped-def]
+        def handle(config: Dict[str, Any], level: int) -> Dict[str, Any]:
+            try:
+                config.update(reconfigure(error, config, level, scalar))
+            except ValueError as refused:
+                logwarn_every(
+                    5.0, "hector_imu reconfigure " + where, f"hector IMU {where}: reconfiguration ignored: {refused}"
+                )
+                config.update(current_values(error.model, scalar))
+            return config
+
+        return handle
+
     def restart(self, now: float) -> None:
         super().restart(now)
         self._imu.reset()  # a world or time reset: GazeboRosIMU::Reset
@@ -67,7 +96,7 @@ class HectorImuPublisher(Periodic):
     def publish(self, stamp: rospy.Time, now: float) -> None:
         reading = self._imu.update(now)  # every update, even unheard: the drift and differences go on
         secs, nsecs = stamp.secs, stamp.nsecs
-        orientation_cov, rate_cov, accel_cov = self._covariances
+        orientation_cov, rate_cov, accel_cov = self._imu.covariances()
         if self._pub is not None:
             self._pub.publish(
                 self._packer.pack,
@@ -96,6 +125,10 @@ class HectorImuPublisher(Periodic):
     def close(self) -> None:
         for service in self._services:
             service.shutdown()
+        for server in self._reconfigure_servers:  # dynamic_reconfigure's Python server has no shutdown of its own
+            server.set_service.shutdown()
+            server.descr_topic.unregister()
+            server.update_topic.unregister()
         for publisher in self._publishers:
             release(publisher)
 

@@ -9,8 +9,8 @@ from xml.etree.ElementTree import Element
 
 import numpy as np
 
-from turtle_sim_ode.models.text import ModelError, plugin_params, read_number
-from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid
+from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid, sensor_plugin
 
 SENSOR_PLUGINS = {"libgazebo_ros_block_laser.so": ("ray", "gpu_ray")}
 MAX_RAYS = 100_000
@@ -26,10 +26,7 @@ class BlockLaserConfig(RayGridConfig):
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> BlockLaserConfig:
-    name = sensor.get("name", "block_laser")
-    what = f"<sensor name='{name}'>"
-    params = plugin_params(plugin)
-    plugin_what = f"{what} <plugin filename='{plugin.get('filename')}'>"
+    name, what, params, plugin_what = sensor_plugin(sensor, plugin, "block_laser")
     config = BlockLaserConfig(
         link=link,
         name=name,

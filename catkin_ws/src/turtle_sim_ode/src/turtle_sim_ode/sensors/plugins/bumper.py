@@ -6,7 +6,7 @@ from typing import List, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import child_text
-from turtle_sim_ode.sensors.sensor_element import rate_at
+from turtle_sim_ode.sensors.sensor_element import rate_at, sensor_what
 
 BUMPER_PLUGIN = "libgazebo_ros_bumper.so"
 SENSOR_PLUGINS = {BUMPER_PLUGIN: ("contact",)}
@@ -27,8 +27,7 @@ class ContactConfig:
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> ContactConfig:
-    name = sensor.get("name", "bumper")
-    what = f"<sensor name='{name}'>"
+    name, what = sensor_what(sensor, "bumper")
     return ContactConfig(
         link=link,
         name=name,

@@ -8,7 +8,7 @@ from typing import List, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
-from turtle_sim_ode.sensors.sensor_element import int_at, number_at, rate_at, sensor_pose
+from turtle_sim_ode.sensors.sensor_element import int_at, number_at, rate_at, sensor_pose, sensor_what
 
 # gazebo_ros_triggered_camera: a frame for each message on <triggerTopicName> (image_trigger), as camera_utils has it.
 TRIGGERED_CAMERA = "libgazebo_ros_triggered_camera.so"
@@ -94,8 +94,7 @@ MAX_CAMERA_PIXELS = 2048 * 2048
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> CameraConfig:
     """A camera or depth <sensor> with its gazebo_ros plugin; ModelError for bad values."""
-    name = sensor.get("name", "camera")
-    what = f"<sensor name='{name}'>"
+    name, what = sensor_what(sensor, "camera")
     camera = sensor.find("camera")
     depth = sensor.get("type") == "depth"
     defaults = CameraConfig(link)

@@ -7,7 +7,7 @@ from typing import List, Mapping
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, read_number
-from turtle_sim_ode.sensors.sensor_element import rate_at
+from turtle_sim_ode.sensors.sensor_element import rate_at, sensor_what
 
 # gazebo_plugins' IMUs: the model plugin (also found inside <sensor type="imu">, as turtlebot3 has it) and the
 # sensor plugin.
@@ -57,5 +57,5 @@ def imu_config(filename: str, params: Mapping[str, str], link: str = "", sensor_
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> ImuConfig:
-    rate = rate_at(sensor, ("update_rate",), 0.0, f"<sensor name='{sensor.get('name', '')}'>")
+    rate = rate_at(sensor, ("update_rate",), 0.0, sensor_what(sensor, "")[1])
     return imu_config(plugin.get("filename", ""), {c.tag: c.text or "" for c in plugin}, link, rate)

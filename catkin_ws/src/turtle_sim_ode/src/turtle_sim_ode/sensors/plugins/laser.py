@@ -8,7 +8,7 @@ from typing import List, Optional, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, child_text
-from turtle_sim_ode.sensors.sensor_element import number_at
+from turtle_sim_ode.sensors.sensor_element import number_at, sensor_what
 
 LASER_PLUGINS = ("libgazebo_ros_laser.so", "libgazebo_ros_ray_sensor.so")
 SENSOR_PLUGINS = {name: ("ray", "gpu_ray") for name in LASER_PLUGINS}
@@ -62,8 +62,7 @@ class LaserConfig:
 
 def laser_config(link: str, sensor: Element, plugin: Optional[Element]) -> LaserConfig:
     """The ray sensor's tags and its laser plugin's (``plugin``; None: the sensor publishes nothing)."""
-    name = sensor.get("name", "laser")
-    what = f"<sensor name='{name}'>"
+    name, what = sensor_what(sensor, "laser")
     defaults = LaserConfig(link)
     ray = sensor.find("ray")
     horizontal = None if ray is None else ray.find("scan/horizontal")

@@ -13,7 +13,7 @@ from turtle_sim_ode.models.builder import compose, quat_from_rpy, rpy_of
 from turtle_sim_ode.models.text import child_text
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.plugins.camera import read as read_camera
-from turtle_sim_ode.sensors.sensor_element import sensor_pose
+from turtle_sim_ode.sensors.sensor_element import sensor_pose, sensor_what
 
 SENSOR_PLUGINS = {"libgazebo_ros_multicamera.so": ("multicamera",)}
 
@@ -29,8 +29,7 @@ def _pose_text(outer: Tuple[float, ...], inner: Tuple[float, ...]) -> str:
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> MultiCameraConfig:
-    name = sensor.get("name", "multicamera")
-    what = f"<sensor name='{name}'>"
+    name, what = sensor_what(sensor, "multicamera")
     outer = sensor_pose(sensor, what)
     base_name = (child_text(plugin, "cameraName") or "").strip("/")
     found = []

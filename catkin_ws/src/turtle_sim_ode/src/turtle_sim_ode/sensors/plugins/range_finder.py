@@ -8,8 +8,8 @@ from dataclasses import dataclass
 from typing import List
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, plugin_params, read_number
-from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid
+from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid, sensor_plugin
 
 SENSOR_PLUGINS = {"libgazebo_ros_range.so": ("ray", "gpu_ray")}
 MAX_RAYS = 10_000
@@ -28,10 +28,7 @@ class RangeConfig(RayGridConfig):
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> RangeConfig:
-    name = sensor.get("name", "range")
-    what = f"<sensor name='{name}'>"
-    params = plugin_params(plugin)
-    plugin_what = f"{what} <plugin filename='{plugin.get('filename')}'>"
+    name, what, params, plugin_what = sensor_plugin(sensor, plugin, "range")
     config = RangeConfig(
         link=link,
         name=name,

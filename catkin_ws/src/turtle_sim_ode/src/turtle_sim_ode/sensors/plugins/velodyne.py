@@ -11,8 +11,8 @@ from typing import List, Tuple
 import numpy as np
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, plugin_params, read_number
-from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid
+from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid, sensor_plugin
 
 SENSOR_PLUGINS = {
     "libgazebo_ros_velodyne_laser.so": ("ray",),
@@ -45,11 +45,8 @@ class VelodyneConfig(RayGridConfig):
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> VelodyneConfig:
-    name = sensor.get("name", "velodyne")
-    what = f"<sensor name='{name}'>"
+    name, what, params, plugin_what = sensor_plugin(sensor, plugin, "velodyne")
     grid = ray_grid(sensor, what)
-    params = plugin_params(plugin)
-    plugin_what = f"{what} <plugin filename='{plugin.get('filename')}'>"
 
     def tag(key: str, default: float, minimum: float = -math.inf) -> float:
         text = params.get(key)

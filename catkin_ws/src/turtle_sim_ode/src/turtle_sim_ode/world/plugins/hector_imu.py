@@ -2,7 +2,10 @@
 gazebo_ros_imu.cpp): its tags and defaults, the sensor error model of sensor_model.h (offset, a first-order Gauss-
 Markov drift with its frequency, white gaussian noise, scale error) for accelerations, rates and yaw, and its per-
 update work (GazeboRosIMU::Update): proper acceleration from the change of the link's world velocity, rate from the
-change of its orientation, and an orientation tilted by the accelerometer bias and turned by the yaw drift."""
+change of its orientation, and an orientation tilted by the accelerometer bias and turned by the yaw drift.
+
+``xyzOffset`` is not read: GazeboRosIMU::Load reads it into offset_.Pos(), but Update never uses it (the line that
+would add it to the position is commented out), so it changes nothing GazeboRosIMU publishes."""
 from __future__ import annotations
 
 import math
@@ -141,12 +144,14 @@ class HectorImu:
         )
 
     def covariances(self) -> Tuple[Tuple[float, ...], Tuple[float, ...], Tuple[float, ...]]:
-        """Orientation, angular velocity and linear acceleration covariances as Load and Update fill them."""
-        accel, rate, yaw = self.config.accel.gaussian_noise, self.config.rate.gaussian_noise, self.config.yaw
+        """Orientation, angular velocity and linear acceleration covariances as Load and Update fill them: the
+        orientation's from the accel and yaw noises of now (Update; dynamic_reconfigure may change them), the rate's
+        and acceleration's from the tags (Load's constant matrices)."""
+        accel, yaw = self.accel_error.model.gaussian_noise, self.yaw_error.model.gaussian_noise
         g2 = sum(c * c for c in self.gravity)
         tilt = (accel[0] ** 2 / g2, accel[1] ** 2 / g2) if g2 > 0 else (-1.0, -1.0)
-        orientation = (tilt[0], 0.0, 0.0, 0.0, tilt[1], 0.0, 0.0, 0.0, yaw.gaussian_noise[0] ** 2)
-        return orientation, _diagonal(rate), _diagonal(accel)
+        orientation = (tilt[0], 0.0, 0.0, 0.0, tilt[1], 0.0, 0.0, 0.0, yaw[0] ** 2)
+        return orientation, _diagonal(self.config.rate.gaussian_noise), _diagonal(self.config.accel.gaussian_noise)
 
 
 def _diagonal(stddevs: Vec3) -> Tuple[float, ...]:

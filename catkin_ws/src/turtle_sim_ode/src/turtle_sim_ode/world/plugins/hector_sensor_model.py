@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import math
 import random
-from dataclasses import dataclass
-from typing import Optional, Tuple
+from dataclasses import dataclass, replace
+from typing import Dict, Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.text import ModelError, read_number
 from turtle_sim_ode.models.urdf import GazeboPlugin
@@ -88,3 +88,33 @@ class SensorError:
             result.append(value[axis] * m.scale_error[axis] + error)
         self.current_drift = tuple(drift)  # type: ignore[assignment]
         return tuple(result)  # type: ignore[return-value]
+
+
+# SensorModel.cfg's fields (hector_gazebo_plugins/cfg/SensorModel.cfg), every one at reconfiguration level 1.
+RECONFIGURE_FIELDS = ("gaussian_noise", "offset", "drift", "drift_frequency", "scale_error")
+RECONFIGURE_LEVEL = 1
+
+
+def reconfigure(error: SensorError, values: Mapping[str, float], level: int, scalar: bool = False) -> Dict[str, float]:
+    """SensorModel_::dynamicReconfigureCallback. At level 1 (a client changed something) each field of ``values``
+    becomes the model's value on every axis; at any other level (the server's first call, level ~0) the model stays
+    and its values are reported: the mean of the three axes (helpers::scalar_value), or the first for a ``scalar``
+    model (yaw). Returns the values the server publishes. A non-finite value is refused (a ValueError naming it),
+    the model unchanged."""
+    if level == RECONFIGURE_LEVEL:
+        bad = [name for name in RECONFIGURE_FIELDS if not math.isfinite(values[name])]
+        if bad:
+            raise ValueError(f"{bad[0]} must be finite, got {values[bad[0]]}")
+        fields = {name: (float(values[name]),) * 3 for name in RECONFIGURE_FIELDS}
+        error.model = replace(error.model, **fields)  # type: ignore[arg-type]
+    return current_values(error.model, scalar)
+
+
+def current_values(model: ErrorModel, scalar: bool = False) -> Dict[str, float]:
+    """The model's SensorModel.cfg values: each field's mean over the axes, or its first axis for a scalar model."""
+    found = {}
+    for name in RECONFIGURE_FIELDS:
+        axes = getattr(model, name)
+        mean = sum(a / 3.0 for a in axes)  # each third first, and held within the axes: no overflow to inf
+        found[name] = axes[0] if scalar else min(max(mean, min(axes)), max(axes))
+    return found
