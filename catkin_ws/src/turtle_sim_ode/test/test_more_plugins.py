@@ -66,6 +66,16 @@ class MorePlugins(unittest.TestCase):
             if fix.header.stamp > stamp:
                 return fix
 
+    def test_7_a_plugins_own_namespace_wins_over_the_spawns(self):
+        """GazeboRosApiPlugin::walkChildAddRobotNamespace adds the spawn's robot_namespace (spawned_ns) only to a
+        plugin without a <robotNamespace>: truth_a stays in own_ns."""
+        for topic in ("/own_ns/truth_a", "/spawned_ns/truth_b"):
+            truth = rospy.wait_for_message(topic, Odometry, WAIT)
+            self.assertAlmostEqual(truth.pose.pose.position.x, 5.0, delta=0.01)
+        published = {name for name, _ in rospy.get_published_topics()}
+        self.assertNotIn("/spawned_ns/truth_a", published)
+        self.assertNotIn("/own_ns/truth_b", published)
+
     def test_5_triggered_camera_sends_a_frame_a_trigger(self):
         images = []
         rospy.Subscriber("/front/image_raw", Image, images.append)

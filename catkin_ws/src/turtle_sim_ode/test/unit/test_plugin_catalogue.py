@@ -4,12 +4,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 from conftest import PACKAGE_ROOT
 
-from turtle_sim_ode.ros.plugins import ADAPTERS
+from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.ros.plugins import ADAPTERS, plugin_namespace
 from turtle_sim_ode.sensors.config import read_sdf_sensors
 from turtle_sim_ode.sensors.plugins import SENSOR_PLUGINS
-from turtle_sim_ode.world.plugins import MODEL_PLUGINS
+from turtle_sim_ode.world.plugins import MODEL_PLUGINS, P3D, read_plugins
 from turtle_sim_ode.world.simulation import Simulation
 
 README = (Path(PACKAGE_ROOT) / "README.md").read_text()
@@ -63,3 +65,14 @@ def test_a_triggered_camera_reads_its_trigger_topic() -> None:
     assert config.triggered and config.trigger_topic == "image_trigger" and config.camera_name == "front"
     (config,) = read_sdf_sensors(camera.format(tags="<triggerTopicName>shoot</triggerTopicName>")).configs
     assert config.trigger_topic == "shoot" and (config.width, config.height) == (8, 6)
+
+
+@pytest.mark.parametrize(
+    "own, spawn, expected",
+    [("own_ns", "spawned_ns", "own_ns"), ("/", "spawned_ns", "/"), ("", "spawned_ns", "spawned_ns"), ("", "", "")],
+)
+def test_a_plugins_own_robot_namespace_wins(own: str, spawn: str, expected: str) -> None:
+    """gazebo_ros_api_plugin.cpp, walkChildAddRobotNamespace: the spawn's robot_namespace goes only to a <plugin>
+    without a <robotNamespace> child."""
+    (config,) = read_plugins("m", [GazeboPlugin(P3D, "p", {"bodyName": "b", "robotNamespace": own})], {}, []).configs
+    assert plugin_namespace(spawn, config) == expected

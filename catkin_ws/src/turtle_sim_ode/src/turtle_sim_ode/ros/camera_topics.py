@@ -146,7 +146,7 @@ class CameraPublisher(Periodic):
         self._sensor = sensor
         self._scene = scene
         self._sun = sun
-        prefix = topic_prefix(namespace or config.robot_namespace) + topic_prefix(config.camera_name)
+        prefix = topic_prefix(namespace) + topic_prefix(config.camera_name)
 
         def topic(name: str) -> str:
             return plugin_topic("", name) if name.startswith("/") else prefix + name

@@ -82,6 +82,13 @@ ADAPTERS: Dict[type, Adapter] = {
 }
 
 
+def plugin_namespace(spawn_namespace: str, config: object) -> str:
+    """A plugin's robot namespace: its own <robotNamespace> where it has one, else the spawn request's
+    robot_namespace, as gazebo_ros's GazeboRosApiPlugin::walkChildAddRobotNamespace adds that only to plugins
+    without one (an empty tag counts as none here)."""
+    return getattr(config, "robot_namespace", "") or spawn_namespace
+
+
 def model_interfaces(
     name: str,
     sim: Simulation,
@@ -94,10 +101,10 @@ def model_interfaces(
     topic first shown to ``check_topic``. All or nothing: if one fails, those opened so far are closed again."""
     interfaces: List[Periodic] = []
     Advertising.check, Advertising.opened = check_topic, []
-    context = ModelContext(name, sim, settings, tf_broadcaster, namespace)
     plugins = sim.plugins.get(name)
     try:
         for config in plugins.configs if plugins is not None else []:
+            context = ModelContext(name, sim, settings, tf_broadcaster, plugin_namespace(namespace, config))
             interfaces += ADAPTERS[type(config)](context, config)
     except BaseException:
         for interface in interfaces:

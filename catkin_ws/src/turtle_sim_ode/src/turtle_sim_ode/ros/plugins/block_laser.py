@@ -22,7 +22,7 @@ class BlockLaserPublisher(Periodic):
         self._lidar = lidar
         self._config = config
         self._rng = np.random.default_rng()
-        self._pub = publisher(plugin_topic(namespace or config.robot_namespace, config.topic), PointCloud, 1)
+        self._pub = publisher(plugin_topic(namespace, config.topic), PointCloud, 1)
         prefix = str(rospy.get_param("tf_prefix")) if rospy.has_param("tf_prefix") else ""
         self._frame = resolve_frame(prefix, config.frame)
 

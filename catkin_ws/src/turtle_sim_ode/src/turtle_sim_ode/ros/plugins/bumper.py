@@ -26,12 +26,12 @@ class ContactsPublisher(Periodic):
 
     def __init__(self, sim: Simulation, model: BuiltModel, config: ContactConfig, namespace: str) -> None:
         super().__init__(period(config.update_rate))
-        self._pub = publisher(plugin_topic(namespace or config.robot_namespace, config.topic), ContactsState, 1)
+        self._pub = publisher(plugin_topic(namespace, config.topic), ContactsState, 1)
         self._sim = sim
         self._physics: PhysicsWorld = sim.physics
         self._watch = self._physics.watch_contacts(model.geoms.get(config.link, []))
         # gazebo_ros_bumper.cpp, Load: frameName through tf::resolve with the namespace's tf_prefix
-        self._frame = resolve_frame(own_tf_prefix(namespace or config.robot_namespace), config.frame)
+        self._frame = resolve_frame(own_tf_prefix(namespace), config.frame)
         self._names: Dict[ode.GeomObject, str] = {}
 
     def _name(self, geom: ode.GeomObject) -> str:

@@ -31,7 +31,7 @@ class TriggeredCameraPublisher(CameraPublisher):
         config = sensor.config
         self._lock = threading.Lock()
         self._triggers = 0
-        prefix = topic_prefix(namespace or config.robot_namespace) + topic_prefix(config.camera_name)
+        prefix = topic_prefix(namespace) + topic_prefix(config.camera_name)
         topic = config.trigger_topic if config.trigger_topic.startswith("/") else prefix + config.trigger_topic
         self._trigger_sub = subscriber(topic, Empty, self._on_trigger, 1)
 

@@ -72,14 +72,14 @@ class DriveInterface(Periodic):
         self.robot = robot
         self._sim = sim
         self._tf = tf_broadcaster if config.publish_tf and settings.publish_tf else None
-        prefix_tf = tf_prefix(namespace or config.robot_namespace)
+        prefix_tf = tf_prefix(namespace)
         base_frame = config.base_frame or settings.base_frame
         self._base_frame = base_frame.lstrip("/")  # the link; a leading "/" only keeps the tf_prefix off
         self._odom_frame = resolve_frame(prefix_tf, config.odometry_frame or settings.odom_frame)
         published_base = resolve_frame(prefix_tf, base_frame)
         self._world_odometry = config.odometry_source == "world"
         self._reset_requested = False
-        prefix = topic_prefix(namespace or config.robot_namespace)
+        prefix = topic_prefix(namespace)
         self._handles: List = [subscriber(prefix + config.command_topic, Twist, self._on_velocity, 1)]
         if config.reset_topic:
             self._handles.append(subscriber(prefix + config.reset_topic, EmptyMsg, self._on_reset, 1))

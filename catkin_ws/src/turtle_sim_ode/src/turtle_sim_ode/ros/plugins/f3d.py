@@ -22,7 +22,6 @@ class F3dPublisher(Periodic):
         super().__init__(0.0)  # every step
         self._physics = physics
         self._reader = reader
-        namespace = namespace or config.robot_namespace
         self._pub = publisher(plugin_topic(namespace, config.topic), WrenchStamped, 1)
         self._message = WrenchStamped()
         self._message.header.frame_id = resolve_frame(own_tf_prefix(namespace), config.frame)

@@ -19,9 +19,7 @@ class ForceInterface(Periodic):
         super().__init__(0.0)  # every step
         self._name = name
         self._wrench = wrench
-        self._sub = subscriber(
-            plugin_topic(namespace or config.robot_namespace, config.topic), Wrench, self._on_wrench, 1
-        )
+        self._sub = subscriber(plugin_topic(namespace, config.topic), Wrench, self._on_wrench, 1)
 
     def _on_wrench(self, message: Wrench) -> None:
         force, torque = message.force, message.torque

@@ -19,7 +19,6 @@ class FtSensorPublisher(Periodic):
         super().__init__(period(config.update_rate))
         self._reader = reader
         self._noise = config.gaussian_noise
-        namespace = namespace or config.robot_namespace
         self._pub = publisher(plugin_topic(namespace, config.topic), WrenchStamped, 1)
         self._message = WrenchStamped()
         self._message.header.frame_id = resolve_frame(own_tf_prefix(namespace), reader.child)

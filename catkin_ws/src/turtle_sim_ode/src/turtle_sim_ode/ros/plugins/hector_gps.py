@@ -22,7 +22,6 @@ class HectorGpsPublisher(Periodic):
         config = gps.config
         super().__init__(period(config.update_rate))
         self._gps = gps
-        namespace = namespace or config.robot_namespace
         fix_topic = plugin_topic(namespace, config.fix_topic)
         self._fix_pub = publisher(fix_topic, NavSatFix, 10)
         self._velocity_pub = publisher(plugin_topic(namespace, config.velocity_topic), Vector3Stamped, 10)

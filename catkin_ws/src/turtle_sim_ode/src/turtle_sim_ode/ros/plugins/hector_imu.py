@@ -34,7 +34,6 @@ class HectorImuPublisher(Periodic):
         config = imu.config
         super().__init__(period(config.update_rate))
         self._imu = imu
-        namespace = namespace or config.robot_namespace
         frame = config.frame or imu.link
         self._publishers: List[PackedPublisher] = []
         self._pub = self._bias_pub = None

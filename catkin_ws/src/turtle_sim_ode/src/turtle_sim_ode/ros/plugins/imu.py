@@ -49,7 +49,7 @@ def imu_publisher(model: BuiltModel, config: ImuConfig, gravity: Vec3, namespace
     if config.link not in model.links:
         rospy.logwarn("model %s: IMU link [%s] does not exist: not published", model.name, config.link)
         return None
-    topic = plugin_topic(namespace or config.robot_namespace, config.topic)
+    topic = plugin_topic(namespace, config.topic)
     sensor = ImuSensor(model, config.link, gravity, config.noise)
     return ImuPublisher(sensor, topic, config.frame or config.link, config.update_rate)
 

@@ -20,7 +20,7 @@ class JointStatePublisher(Periodic):
         super().__init__(period(config.update_rate))
         self._handles = [model.joint(name) for name in config.joints]
         self._packer = JointStatePacker(list(config.joints))
-        self._pub = packed_publisher(topic_prefix(namespace or config.robot_namespace) + "joint_states", JointState)
+        self._pub = packed_publisher(topic_prefix(namespace) + "joint_states", JointState)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         if not self._pub.get_num_connections():

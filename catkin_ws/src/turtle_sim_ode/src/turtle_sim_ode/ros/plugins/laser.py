@@ -20,10 +20,10 @@ class LaserPublisher(Periodic):
         config = scanner.config
         super().__init__(period(config.update_rate))  # 0: every step, as Gazebo's sensors
         self._scanner = scanner
-        self._pub = packed_publisher(plugin_topic(namespace or config.robot_namespace, config.topic), LaserScan)
+        self._pub = packed_publisher(plugin_topic(namespace, config.topic), LaserScan)
         # gazebo_ros_laser resolves its frameName with the tf_prefix as GazeboRos does (tf_prefix, else namespace).
         self._packer = LaserScanPacker(
-            resolve_frame(tf_prefix(namespace or config.robot_namespace), scanner.frame),
+            resolve_frame(tf_prefix(namespace), scanner.frame),
             angle_min=config.min_angle,
             angle_max=config.max_angle,
             angle_increment=config.angle_increment,

@@ -50,9 +50,9 @@ class GroundTruthPublisher(Periodic):
         return cls(
             model,
             link,
-            topic_prefix(namespace or config.robot_namespace) + config.topic,
+            topic_prefix(namespace) + config.topic,
             # gazebo_ros_p3d.cpp, Load: the frame (not the body) through tf::resolve with the namespace's tf_prefix
-            resolve_frame(own_tf_prefix(namespace or config.robot_namespace), config.frame),
+            resolve_frame(own_tf_prefix(namespace), config.frame),
             config.update_rate,  # 0: every step, as gazebo_ros_p3d
             False,
             config.gaussian_noise,

@@ -21,7 +21,7 @@ class RangePublisher(Periodic):
         self._lidar = lidar
         self._config = config
         self._rng = random.Random()
-        self._pub = publisher(plugin_topic(namespace or config.robot_namespace, config.topic), Range, 1)
+        self._pub = publisher(plugin_topic(namespace, config.topic), Range, 1)
         prefix = str(rospy.get_param("tf_prefix")) if rospy.has_param("tf_prefix") else ""
         message = Range(radiation_type=config.radiation, field_of_view=config.field_of_view)
         message.min_range, message.max_range = config.range_min, config.range_max

@@ -63,7 +63,6 @@ class TricycleInterface(Periodic):
         self.robot = robot
         self._sim = sim
         self._tf = tf
-        namespace = namespace or config.robot_namespace
         prefix = tf_prefix(namespace, otherwise="")  # tf::getPrefixParam: "" when no tf_prefix parameter is set
         odom_frame, base_frame = resolve_frame(prefix, config.odometry_frame), resolve_frame(prefix, config.base_frame)
         self._command = subscriber(plugin_topic(namespace, config.command_topic), Twist, self._on_velocity, 1)

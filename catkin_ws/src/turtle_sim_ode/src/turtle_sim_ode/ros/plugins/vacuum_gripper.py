@@ -30,9 +30,7 @@ class VacuumGripperInterface(Periodic):
         super().__init__(0.0)  # every step, as upstream publishes at every world update
         self._gripper = gripper
         self._name = context.name
-        # gazebo_ros gives a plugin the spawn's robot_namespace only where it has no <robotNamespace> of its own
-        # (GazeboRosApiPlugin::walkChildAddRobotNamespace); spawn_model's default is "/".
-        namespace = config.robot_namespace or context.namespace
+        namespace = context.namespace
         self.topic = plugin_topic(namespace, config.topic)
         self.services = [topic_prefix(namespace) + "on", topic_prefix(namespace) + "off"]
         for service in self.services:

@@ -32,7 +32,7 @@ POINT_FIELDS = [
 
 def velodyne_frame(config: VelodyneConfig, namespace: str) -> str:
     """Load's frame: frameName under the robot namespace (when not "/"), else under the tf_prefix parameter."""
-    prefix = namespace or config.robot_namespace
+    prefix = namespace
     if not prefix.strip("/"):
         prefix = str(rospy.get_param("tf_prefix", "")) if rospy.has_param("tf_prefix") else ""
     return resolve_frame(prefix.rstrip("/"), config.frame)
@@ -44,7 +44,7 @@ class VelodynePublisher(Periodic):
         super().__init__(period(config.update_rate))  # 0: every step, as Gazebo's sensors
         self._lidar = lidar
         self._cloud = VelodyneCloud(config, lidar.directions, rng)
-        self._pub = packed_publisher(plugin_topic(namespace or config.robot_namespace, config.topic), PointCloud2)
+        self._pub = packed_publisher(plugin_topic(namespace, config.topic), PointCloud2)
         self._message = PointCloud2(fields=POINT_FIELDS, point_step=POINT_STEP)
         self._message.header.frame_id = velodyne_frame(config, namespace)
         self._pack = packer(self._message)

@@ -41,7 +41,7 @@ class VelodyneConfig(RayGridConfig):
     min_intensity: float = -math.inf
     gaussian_noise: float = 0.0
     organize_cloud: bool = False
-    robot_namespace: str = "/"
+    robot_namespace: str = ""  # none given: the spawn's (Load's own default "/" is the root too)
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> VelodyneConfig:
@@ -68,7 +68,7 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ve
         min_intensity=tag("min_intensity", -math.inf),
         gaussian_noise=tag("gaussianNoise", 0.0, minimum=0.0),
         organize_cloud=organize in ("true", "1"),
-        robot_namespace=(params.get("robotNamespace") or "/").strip(),
+        robot_namespace=(params.get("robotNamespace") or "").strip(),
     )
     if config.rays > MAX_RAYS:
         raise ModelError(f"{what}: {config.rays} rays a scan, more than {MAX_RAYS}")
