@@ -14,6 +14,7 @@ from sensor_msgs.msg import CameraInfo, Image, NavSatFix, PointCloud, Range
 from geographic_msgs.msg import GeoPoint, GeoPose
 from hector_gazebo_plugins.srv import SetReferenceGeoPose
 from std_msgs.msg import Empty
+from tf2_msgs.msg import TFMessage
 
 WAIT = 90.0
 
@@ -123,6 +124,16 @@ class MorePlugins(unittest.TestCase):
         self.assertLess(abs(moved_x), 0.05)
         self.assertAlmostEqual(latest.twist.twist.linear.y, 0.5, delta=0.1)
         self.assertLess(abs(math.atan2(latest.pose.pose.orientation.z, latest.pose.pose.orientation.w)), 0.02)
+
+    def test_4b_planar_move_sends_odom_on_tf(self):
+        """GazeboRosPlanarMove::publishOdometry sends odometryFrame -> robotBaseFrame with each odometry message."""
+        deadline = rospy.get_time() + WAIT
+        while rospy.get_time() < deadline:
+            message = rospy.wait_for_message("/tf", TFMessage, WAIT)
+            frames = {(t.header.frame_id, t.child_frame_id) for t in message.transforms}
+            if ("odom", "base_footprint") in frames:
+                return
+        self.fail("no odom -> base_footprint on /tf")
 
 
 if __name__ == "__main__":

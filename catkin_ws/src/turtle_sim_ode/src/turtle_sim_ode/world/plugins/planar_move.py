@@ -29,6 +29,12 @@ class PlanarMoveConfig:
     cmd_timeout: float = -1.0  # s of sim time; negative = none
     robot_namespace: str = ""
 
+    @property
+    def publish_tf(self) -> bool:
+        """publishOdometry sends odometryFrame -> robotBaseFrame on tf with every odometry message (the node opens
+        /tf for it); none without odometry (odometryRate 0)."""
+        return self.odometry_rate > 0.0
+
     def make_robot(self, model: BuiltModel) -> "PlanarMoveRobot":
         return PlanarMoveRobot(model, self)
 
