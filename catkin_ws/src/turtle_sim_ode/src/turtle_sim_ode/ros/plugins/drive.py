@@ -3,7 +3,7 @@ and wheel joint states out, with one stamp."""
 from __future__ import annotations
 
 import math
-from typing import List, Optional, Tuple
+from typing import List, Optional, Sequence, Tuple
 
 import rospy
 from geometry_msgs.msg import Twist
@@ -11,7 +11,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Empty as EmptyMsg
 
-from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, subscriber, topic_prefix
+from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, plugin_topic, subscriber, topic_prefix
 from turtle_sim_ode.ros.plugin_topics import (
     DIFF_DRIVE_POSE_COVARIANCE,
     DIFF_DRIVE_TWIST_COVARIANCE,
@@ -49,6 +49,47 @@ def command_drive(name: str, robot: DriveRobot, twist: Twist, now: float) -> Non
             "%s: velocity command clamped: linear.x [%s] angular.z [%s] to max_linear [%s] max_angular [%s]"
             % (name, linear, angular, params.max_linear, params.max_angular),
         )
+
+
+class GazeboDriveInterface(Periodic):
+    """What gazebo_plugins' skid steer, planar move and tricycle drives share: ``commandTopic`` in, ``odometryTopic``
+    out and tf ``odometryFrame`` -> ``robotBaseFrame`` (``tf`` None: none), both frames under the ``tf_prefix``
+    parameter if one is set (tf::getPrefixParam). Subclasses publish, and may take the command otherwise."""
+
+    def __init__(
+        self,
+        name: str,
+        robot: DriveRobot,
+        sim: Simulation,
+        tf: Optional[PackedPublisher],
+        namespace: str,
+        rate: float,
+        pose_covariance: Sequence[float],
+        twist_covariance: Sequence[float] = (0.0,) * 36,
+    ) -> None:
+        config = robot.config
+        super().__init__(period(rate))
+        self.name = name
+        self.robot = robot
+        self._sim = sim
+        self._tf = tf
+        self.frame_prefix = tf_prefix(namespace, otherwise="")
+        odom_frame = resolve_frame(self.frame_prefix, config.odometry_frame)  # type: ignore[attr-defined]
+        base_frame = resolve_frame(self.frame_prefix, config.base_frame)  # type: ignore[attr-defined]
+        command_topic = plugin_topic(namespace, config.command_topic)  # type: ignore[attr-defined]
+        self._command = subscriber(command_topic, Twist, self._on_velocity, 1)
+        self._odom_pub = packed_publisher(
+            plugin_topic(namespace, config.odometry_topic), Odometry  # type: ignore[attr-defined]
+        )
+        self._odom_packer = OdometryPacker(odom_frame, base_frame, pose_covariance, twist_covariance)
+        self._tf_packer = TransformPacker(odom_frame, base_frame)
+
+    def _on_velocity(self, twist: Twist) -> None:
+        command_drive(self.name, self.robot, twist, self._sim.sim_time)
+
+    def close(self) -> None:
+        release(self._command)
+        release(self._odom_pub)
 
 
 class DriveInterface(Periodic):

@@ -9,37 +9,26 @@ from typing import List, Optional, Tuple
 
 import rospy
 from geometry_msgs.msg import Twist
-from nav_msgs.msg import Odometry
 
 from turtle_sim_ode.models.builder import rpy_of
-from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, subscriber
-from turtle_sim_ode.ros.plugin_topics import period, resolve_frame, tf_prefix
+from turtle_sim_ode.ros.periodic import ModelContext, Periodic
+from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface
 from turtle_sim_ode.ros.throttle import logwarn_every
-from turtle_sim_ode.ros.wire import OdometryPacker, PackedPublisher, TransformPacker, release
+from turtle_sim_ode.ros.wire import PackedPublisher
 from turtle_sim_ode.world.plugins.planar_move import PlanarMoveConfig, PlanarMoveRobot
 from turtle_sim_ode.world.simulation import Simulation
 
 POSE_COVARIANCE = tuple({0: 1e-5, 7: 1e-5, 14: 1e12, 21: 1e12, 28: 1e12, 35: 1e-3}.get(i, 0.0) for i in range(36))
 
 
-class PlanarMoveInterface(Periodic):
+class PlanarMoveInterface(GazeboDriveInterface):
     def __init__(
         self, name: str, robot: PlanarMoveRobot, sim: Simulation, tf: Optional[PackedPublisher], namespace: str
     ) -> None:
-        config = robot.config
-        super().__init__(period(config.odometry_rate))
-        self.name = name
-        self.robot = robot
-        self._sim = sim
-        self._tf = tf
-        prefix = tf_prefix(namespace, otherwise="")  # tf::getPrefixParam
-        odom_frame, base_frame = resolve_frame(prefix, config.odometry_frame), resolve_frame(prefix, config.base_frame)
-        self._command = subscriber(plugin_topic(namespace, config.command_topic), Twist, self._on_velocity, 1)
-        self._odom_pub = packed_publisher(plugin_topic(namespace, config.odometry_topic), Odometry)
-        self._odom_packer = OdometryPacker(odom_frame, base_frame, POSE_COVARIANCE)
-        self._tf_packer = TransformPacker(odom_frame, base_frame)
+        rate = robot.config.odometry_rate
+        super().__init__(name, robot, sim, tf, namespace, rate, POSE_COVARIANCE)  # type: ignore[arg-type]
         self._last: Optional[Tuple[float, float, float, float]] = None  # time, x, y, yaw of the last message
-        self._publishes = config.odometry_rate > 0  # odometryRate 0: no odometry, as UpdateChild
+        self._publishes = rate > 0  # odometryRate 0: no odometry, as UpdateChild
 
     def _on_velocity(self, twist: Twist) -> None:
         x, y, rotation = twist.linear.x, twist.linear.y, twist.angular.z
@@ -78,10 +67,6 @@ class PlanarMoveInterface(Periodic):
         self._odom_pub.publish(self._odom_packer.pack, secs, nsecs, planar, orientation, linear, (0.0, 0.0, angular))
         if self._tf is not None:
             self._tf.publish(self._tf_packer.pack, secs, nsecs, position, orientation)
-
-    def close(self) -> None:
-        release(self._command)
-        release(self._odom_pub)
 
 
 def interfaces(context: ModelContext, config: PlanarMoveConfig) -> List[Periodic]:

@@ -9,13 +9,10 @@ import math
 from typing import List, Optional, Tuple
 
 import rospy
-from geometry_msgs.msg import Twist
-from nav_msgs.msg import Odometry
 
-from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, subscriber
-from turtle_sim_ode.ros.plugin_topics import period, resolve_frame, tf_prefix
-from turtle_sim_ode.ros.plugins.drive import command_drive
-from turtle_sim_ode.ros.wire import OdometryPacker, PackedPublisher, TransformPacker, release
+from turtle_sim_ode.ros.periodic import ModelContext, Periodic
+from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface
+from turtle_sim_ode.ros.wire import PackedPublisher
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig, SkidSteerRobot
 from turtle_sim_ode.world.simulation import Simulation
 
@@ -28,25 +25,12 @@ def covariance(config: SkidSteerConfig) -> Tuple[float, ...]:
     return tuple(diagonal[index // 6] if index % 7 == 0 else 0.0 for index in range(36))
 
 
-class SkidSteerInterface(Periodic):
+class SkidSteerInterface(GazeboDriveInterface):
     def __init__(
         self, name: str, robot: SkidSteerRobot, sim: Simulation, tf: Optional[PackedPublisher], namespace: str
     ) -> None:
-        config = robot.config
-        super().__init__(period(config.update_rate))
-        self.name = name
-        self.robot = robot
-        self._sim = sim
-        self._tf = tf
-        prefix = tf_prefix(namespace, otherwise="")  # tf::getPrefixParam: "" when no tf_prefix parameter is set
-        odom_frame, base_frame = resolve_frame(prefix, config.odometry_frame), resolve_frame(prefix, config.base_frame)
-        self._command = subscriber(plugin_topic(namespace, config.command_topic), Twist, self._on_velocity, 1)
-        self._odom_pub = packed_publisher(plugin_topic(namespace, config.odometry_topic), Odometry)
-        self._odom_packer = OdometryPacker(odom_frame, base_frame, covariance(config), covariance(config))
-        self._tf_packer = TransformPacker(odom_frame, base_frame)
-
-    def _on_velocity(self, twist: Twist) -> None:
-        command_drive(self.name, self.robot, twist, self._sim.sim_time)
+        rate, covariances = robot.config.update_rate, covariance(robot.config)
+        super().__init__(name, robot, sim, tf, namespace, rate, covariances, covariances)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         model = self.robot.model
@@ -63,10 +47,6 @@ class SkidSteerInterface(Periodic):
         )
         if self._tf is not None:
             self._tf.publish(self._tf_packer.pack, secs, nsecs, position, orientation)
-
-    def close(self) -> None:
-        release(self._command)
-        release(self._odom_pub)
 
 
 def interfaces(context: ModelContext, config: SkidSteerConfig) -> List[Periodic]:

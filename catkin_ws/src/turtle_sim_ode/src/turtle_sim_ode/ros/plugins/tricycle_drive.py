@@ -10,15 +10,13 @@ import math
 from typing import List, Optional, Tuple
 
 import rospy
-from geometry_msgs.msg import Twist
-from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
 
 from turtle_sim_ode.models.builder import compose, inverse
-from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, subscriber
-from turtle_sim_ode.ros.plugin_topics import Vec3, period, resolve_frame, tf_prefix
-from turtle_sim_ode.ros.plugins.drive import command_drive
-from turtle_sim_ode.ros.wire import JointStatePacker, OdometryPacker, PackedPublisher, Quat, TransformPacker, release
+from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic
+from turtle_sim_ode.ros.plugin_topics import Vec3, resolve_frame
+from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface
+from turtle_sim_ode.ros.wire import JointStatePacker, PackedPublisher, Quat, TransformPacker, release
 from turtle_sim_ode.world.plugins.tricycle_drive import TricycleConfig, TricycleRobot
 from turtle_sim_ode.world.simulation import Simulation
 
@@ -53,22 +51,13 @@ def encoder_odometry(robot: TricycleRobot) -> Tuple[Vec3, Quat, Vec3, Vec3]:
     )
 
 
-class TricycleInterface(Periodic):
+class TricycleInterface(GazeboDriveInterface):
     def __init__(
         self, name: str, robot: TricycleRobot, sim: Simulation, tf: Optional[PackedPublisher], namespace: str
     ) -> None:
         config = robot.config
-        super().__init__(period(config.update_rate))
-        self.name = name
-        self.robot = robot
-        self._sim = sim
-        self._tf = tf
-        prefix = tf_prefix(namespace, otherwise="")  # tf::getPrefixParam: "" when no tf_prefix parameter is set
-        odom_frame, base_frame = resolve_frame(prefix, config.odometry_frame), resolve_frame(prefix, config.base_frame)
-        self._command = subscriber(plugin_topic(namespace, config.command_topic), Twist, self._on_velocity, 1)
-        self._odom_pub = packed_publisher(plugin_topic(namespace, config.odometry_topic), Odometry)
-        self._odom_packer = OdometryPacker(odom_frame, base_frame, POSE_COVARIANCE)
-        self._tf_packer = TransformPacker(odom_frame, base_frame)
+        super().__init__(name, robot, sim, tf, namespace, config.update_rate, POSE_COVARIANCE)  # type: ignore
+        prefix = self.frame_prefix
         self._odometry = encoder_odometry if config.odometry_source == "encoder" else world_odometry
         joints = config.joints_needed
         links = robot.model.robot.joints
@@ -85,9 +74,6 @@ class TricycleInterface(Periodic):
         if config.publish_wheel_joint_state:
             self._joint_pub = packed_publisher(plugin_topic(namespace, "joint_states"), JointState)
         self._joint_packer = JointStatePacker(list(joints), zero_efforts=True)
-
-    def _on_velocity(self, twist: Twist) -> None:
-        command_drive(self.name, self.robot, twist, self._sim.sim_time)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         secs, nsecs = stamp.secs, stamp.nsecs
@@ -107,8 +93,7 @@ class TricycleInterface(Periodic):
             self._joint_pub.publish(self._joint_packer.pack, secs, nsecs, positions, tuple(j.rate() for j in joints))
 
     def close(self) -> None:
-        release(self._command)
-        release(self._odom_pub)
+        super().close()
         if self._joint_pub is not None:
             release(self._joint_pub)
 
