@@ -167,11 +167,12 @@ class Reader:
                 if self._batch_s:
                     time.sleep(self._batch_s)
         except (OSError, ConnectionError) as error:
-            self.error = error
+            if not self._stop.is_set():  # not a socket ``close`` shut under a read that outlived the join below
+                self.error = error
 
     def close(self) -> None:
         self._stop.set()
-        self._thread.join(5.0)
+        self._thread.join(30.0)  # a bulk read on a loaded machine may take seconds
         for stream in self.streams:
             stream.sock.close()
         self._selector.close()
