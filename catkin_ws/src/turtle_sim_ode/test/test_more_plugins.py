@@ -1,16 +1,17 @@
 #!/usr/bin/env python3
 """The holonomic base of models/holonomic_bot.urdf through ROS: planar move on /cmd_vel and /odom
 (GazeboRosPlanarMove), the downward sonar's sensor_msgs/Range (GazeboRosRange), the block laser's
-sensor_msgs/PointCloud (GazeboRosBlockLaser), the hector GPS's NavSatFix and set_reference_geopose (GazeboRosGps), a
-triggered camera's one frame a trigger (GazeboRosTriggeredCamera) and a stereo head's pairs (GazeboRosMultiCamera)."""
+sensor_msgs/PointCloud (GazeboRosBlockLaser), the hector GPS's NavSatFix, set_reference_geopose and dynamic_reconfigure
+servers (GazeboRosGps), a triggered camera's one frame a trigger (GazeboRosTriggeredCamera) and a stereo head's pairs (GazeboRosMultiCamera)."""
 import math
 import unittest
 
 import rospy
 import rostest
+from dynamic_reconfigure.client import Client
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from sensor_msgs.msg import CameraInfo, Image, NavSatFix, PointCloud, Range
+from sensor_msgs.msg import CameraInfo, Image, NavSatFix, NavSatStatus, PointCloud, Range
 from geographic_msgs.msg import GeoPoint, GeoPose
 from hector_gazebo_plugins.srv import SetReferenceGeoPose
 from std_msgs.msg import Empty
@@ -59,6 +60,52 @@ class MorePlugins(unittest.TestCase):
             set_reference(pose)
         fix = self._fix_after(rospy.Time.now())
         self.assertAlmostEqual(fix.latitude, -33.9, delta=1e-4)
+
+    def test_3c_gps_status_reconfigure(self):
+        """GazeboRosGps::dynamicReconfigureCallback on /fix/status (hector_gazebo_plugins/src/gazebo_ros_gps.cpp):
+        the first configuration reports the loaded status (FIX) and service (0, no tag); a change sets the next
+        fix's status (SBAS_FIX; NO_FIX without STATUS_FIX) and service mask (GPS | GALILEO = 9)."""
+        client = Client("/fix/status", timeout=WAIT)
+        first = client.get_configuration(timeout=WAIT)
+        self.assertTrue(first["STATUS_FIX"])
+        for name in ("STATUS_SBAS_FIX", "STATUS_GBAS_FIX", "SERVICE_GPS", "SERVICE_GLONASS", "SERVICE_COMPASS"):
+            self.assertFalse(first[name], name)
+        self.assertFalse(first["SERVICE_GALILEO"])  # GNSS.cfg's defaults (all services on) do not count
+        flags = dict(STATUS_SBAS_FIX=True, SERVICE_GPS=True, SERVICE_GALILEO=True)
+        answer = client.update_configuration(flags)
+        self.assertTrue(all(answer[name] for name in flags))
+        fix = self._fix_after(rospy.Time.now())
+        self.assertEqual((fix.status.status, fix.status.service), (NavSatStatus.STATUS_SBAS_FIX, 9))
+        client.update_configuration({"STATUS_FIX": False})
+        fix = self._fix_after(rospy.Time.now())
+        self.assertEqual((fix.status.status, fix.status.service), (NavSatStatus.STATUS_NO_FIX, 9))
+        # A change leaves the flags as given (STATUS_GBAS_FIX stays off): a plain fix again, GALILEO alone.
+        client.update_configuration(dict(STATUS_FIX=True, STATUS_SBAS_FIX=False, SERVICE_GPS=False))
+        fix = self._fix_after(rospy.Time.now())
+        self.assertEqual((fix.status.status, fix.status.service), (NavSatStatus.STATUS_FIX, 8))
+
+    def test_3d_gps_position_noise_reconfigure(self):
+        """SensorModel_::dynamicReconfigureCallback on /fix/position (include/hector_gazebo_plugins/sensor_model.h):
+        the tags first (no noise: 0; driftFrequency 1/3600, SensorModel_()'s); gaussian_noise 0.5 on every axis
+        makes GazeboRosGps::Update's covariance diagonal drift^2 + noise^2 = 0.25; NaN is refused, the noise
+        kept. /fix/velocity reports its model too."""
+        position = Client("/fix/position", timeout=WAIT)
+        first = position.get_configuration(timeout=WAIT)
+        self.assertEqual((first["gaussian_noise"], first["drift"], first["offset"]), (0.0, 0.0, 0.0))
+        self.assertAlmostEqual(first["drift_frequency"], 1.0 / 3600.0, places=12)
+        velocity = Client("/fix/velocity", timeout=WAIT).get_configuration(timeout=WAIT)
+        self.assertEqual((velocity["gaussian_noise"], velocity["scale_error"]), (0.0, 1.0))
+        try:
+            self.assertAlmostEqual(position.update_configuration({"gaussian_noise": 0.5})["gaussian_noise"], 0.5)
+            fix = self._fix_after(rospy.Time.now())
+            for index, value in enumerate(fix.position_covariance):
+                self.assertAlmostEqual(value, 0.25 if index % 4 == 0 else 0.0, places=12)
+            self.assertAlmostEqual(position.update_configuration({"gaussian_noise": math.nan})["gaussian_noise"], 0.5)
+            fix = self._fix_after(rospy.Time.now())
+            self.assertAlmostEqual(fix.position_covariance[8], 0.25, places=12)
+            self.assertTrue(math.isfinite(fix.latitude))
+        finally:
+            position.update_configuration({"gaussian_noise": 0.0})  # the other tests read exact positions
 
     @staticmethod
     def _fix_after(stamp):

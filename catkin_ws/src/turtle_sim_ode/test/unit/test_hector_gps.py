@@ -1,7 +1,8 @@
 """libhector_gazebo_ros_gps.so: tags and defaults as GazeboRosGps::Load reads them, and Update's fix
 (hector_gazebo_plugins/src/gazebo_ros_gps.cpp): WGS84 radii at the reference latitude, latitude from the position
 turned by the reference heading, the world's <spherical_coordinates> with useWorldSphericalCoordinates, and a new
-reference through setGeoposeCb."""
+reference through setGeoposeCb; the dynamic_reconfigure servers' effects: the GNSS flags of dynamicReconfigureCallback
+and the covariance of a reconfigured error model."""
 from __future__ import annotations
 
 import math
@@ -14,7 +15,9 @@ from hypothesis import strategies as st
 from turtle_sim_ode.models.sdf import parse_sdf_world
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.plugins import read_plugins
+from turtle_sim_ode.world.plugins.hector_gps import GNSS_FLAGS as FLAGS
 from turtle_sim_ode.world.plugins.hector_gps import HECTOR_GPS, HectorGps
+from turtle_sim_ode.world.plugins.hector_sensor_model import reconfigure
 from turtle_sim_ode.world.simulation import Simulation
 
 POST_SDF = """<sdf version="1.6"><model name="post"><static>true</static><link name="gps_link">
@@ -125,3 +128,80 @@ def test_any_valid_reference_gives_a_finite_fix_at_its_altitude(latitude, longit
     assert fix.altitude == pytest.approx(altitude + 2.0)
     # The post is 112 m from the origin: at most ~0.001 degree of latitude away from the reference.
     assert abs(fix.latitude - latitude) < 0.0011
+
+
+FIRST_LEVEL = ~0  # dynamic_reconfigure servers' first callback
+
+
+def test_gnss_first_call_reports_the_tags() -> None:
+    """GazeboRosGps::dynamicReconfigureCallback, level != 1: the flags read from the status and service bits."""
+    sensor = gps({})
+    assert sensor.reconfigure_status(dict.fromkeys(FLAGS, True), FIRST_LEVEL) == {
+        "STATUS_FIX": True,
+        "STATUS_SBAS_FIX": False,
+        "STATUS_GBAS_FIX": False,
+        "SERVICE_GPS": False,
+        "SERVICE_GLONASS": False,
+        "SERVICE_COMPASS": False,
+        "SERVICE_GALILEO": False,
+    }
+    assert (sensor.status, sensor.service) == (0, 0)
+    tagged = gps({"status": "2", "service": "5"})  # GBAS fix; GPS and COMPASS (NavSatStatus bits 1 and 4)
+    flags = tagged.reconfigure_status({}, 0)
+    assert [name for name in FLAGS if flags[name]] == [
+        "STATUS_FIX",
+        "STATUS_GBAS_FIX",
+        "SERVICE_GPS",
+        "SERVICE_COMPASS",
+    ]
+
+
+@pytest.mark.parametrize(
+    "on, status, service",
+    [
+        (("STATUS_FIX",), 0, 0),
+        (("STATUS_FIX", "STATUS_SBAS_FIX", "SERVICE_GPS", "SERVICE_GALILEO"), 1, 9),
+        (("STATUS_FIX", "STATUS_SBAS_FIX", "STATUS_GBAS_FIX", "SERVICE_GLONASS"), 3, 2),
+        (("STATUS_SBAS_FIX", "SERVICE_COMPASS"), -1, 4),  # no STATUS_FIX: STATUS_NO_FIX whatever the augmentation
+    ],
+)
+def test_gnss_change_sets_the_next_fix_s_status_and_service(on, status, service) -> None:  # type: ignore
+    """Level 1: STATUS_NO_FIX without STATUS_FIX, else SBAS (1) | GBAS (2); the service mask GPS 1, GLONASS 2,
+    COMPASS 4, GALILEO 8 (sensor_msgs/NavSatStatus)."""
+    sensor = gps({})
+    sensor.reconfigure_status({name: name in on for name in FLAGS}, 1)
+    fix = sensor.update(0.0)
+    assert (fix.status, fix.service) == (status, service)
+
+
+@settings(max_examples=60, deadline=None, derandomize=True)
+@given(st.fixed_dictionaries({name: st.booleans() for name in FLAGS}), st.sampled_from([1, 0, FIRST_LEVEL]))
+def test_gnss_reports_what_it_set(values, level) -> None:  # type: ignore[no-untyped-def]
+    """Any flags: a change is kept as the client gave it, and a later first call reads the same flags back from the
+    bits, except that STATUS_NO_FIX (-1: every bit) reads as both augmentations, as upstream's bit tests read it;
+    another level changes nothing."""
+    sensor = gps({})
+    reported = sensor.reconfigure_status(values, level)
+    if level != 1:
+        assert (sensor.status, sensor.service) == (0, 0)
+        return
+    assert reported == values
+    assert sensor.status in (-1, 0, 1, 2, 3) and 0 <= sensor.service <= 15
+    expected = dict(values)
+    if not values["STATUS_FIX"]:
+        expected.update(STATUS_SBAS_FIX=True, STATUS_GBAS_FIX=True)
+    assert sensor.reconfigure_status({}, 0) == expected
+
+
+def test_reconfigured_position_noise_gives_the_covariance() -> None:
+    """Update fills the covariance from the position error model's members, so it follows a reconfiguration:
+    drift^2 + gaussian_noise^2 on each axis, from the values set on every axis; the velocity's changes nothing."""
+    sensor = gps({"gaussianNoise": "0.5 0.5 1.0", "drift": "0.1 0.1 0.2"})
+    values = dict(gaussian_noise=2.0, offset=0.0, drift=0.5, drift_frequency=0.0, scale_error=1.0)
+    reconfigure(sensor.position_error, values, 1)
+    reconfigure(sensor.velocity_error, dict(values, gaussian_noise=7.0), 1)
+    fix = sensor.update(0.0)
+    assert fix.position_covariance == pytest.approx((4.25, 0, 0, 0, 4.25, 0, 0, 0, 4.25), abs=1e-12)
+    assert sensor.config.position.gaussian_noise == (0.5, 0.5, 1.0)  # the tags stay as read
+    sensor.reset()  # a world reset keeps the reconfigured model, as Reset does
+    assert sensor.update(0.0).position_covariance[0] == pytest.approx(4.25)

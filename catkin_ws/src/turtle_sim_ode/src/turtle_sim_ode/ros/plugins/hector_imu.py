@@ -6,21 +6,19 @@ the dynamic_reconfigure servers ``topicName``/accel, /rate and /yaw (hector_gaze
 the error models, as GazeboRosIMU::Load sets them up when the topic is not empty."""
 from __future__ import annotations
 
-from typing import Any, Dict, List
+from typing import Any, List
 
 import rospy
 from dynamic_reconfigure.server import Server
-from hector_gazebo_plugins.cfg import SensorModelConfig
 from hector_gazebo_plugins.srv import SetBias, SetBiasResponse
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty, EmptyResponse
 
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic
 from turtle_sim_ode.ros.plugin_topics import period
-from turtle_sim_ode.ros.throttle import logwarn_every
+from turtle_sim_ode.ros.plugins.hector_reconfigure import close_servers, sensor_model_server
 from turtle_sim_ode.ros.wire import ImuPacker, PackedPublisher, release
 from turtle_sim_ode.world.plugins.hector_imu import HectorImu, HectorImuConfig, SensorError
-from turtle_sim_ode.world.plugins.hector_sensor_model import current_values, reconfigure
 
 NO_COVARIANCE = (0.0,) * 9
 
@@ -58,8 +56,7 @@ class HectorImuPublisher(Periodic):
                 ("yaw", imu.yaw_error, True),
             ):
                 where = rospy.resolve_name(plugin_topic(namespace, config.topic + "/" + name))
-                server = Server(SensorModelConfig, self._reconfigure(error, scalar, where), namespace=where)
-                self._reconfigure_servers.append(server)
+                self._reconfigure_servers.append(sensor_model_server(error, where, "hector IMU", scalar))
 
     def _on_calibrate(self, _request: Any) -> EmptyResponse:
         self._imu.rate_error.reset((0.0, 0.0, 0.0))  # ServiceCallback: "imu is always calibrated in sim"
@@ -71,20 +68,6 @@ class HectorImuPublisher(Periodic):
             bias = (request.bias.x, request.bias.y, request.bias.z)
             error.reset(bias)
             return SetBiasResponse()
-
-        return handle
-
-    @staticmethod
-    def _reconfigure(error: SensorError, scalar: bool, where: str):  # type: ignore[no-untyped-def]
-        def handle(config: Dict[str, Any], level: int) -> Dict[str, Any]:
-            try:
-                config.update(reconfigure(error, config, level, scalar))
-            except ValueError as refused:
-                logwarn_every(
-                    5.0, "hector_imu reconfigure " + where, f"hector IMU {where}: reconfiguration ignored: {refused}"
-                )
-                config.update(current_values(error.model, scalar))
-            return config
 
         return handle
 
@@ -124,10 +107,7 @@ class HectorImuPublisher(Periodic):
     def close(self) -> None:
         for service in self._services:
             service.shutdown()
-        for server in self._reconfigure_servers:  # dynamic_reconfigure's Python server has no shutdown of its own
-            server.set_service.shutdown()
-            server.descr_topic.unregister()
-            server.update_topic.unregister()
+        close_servers(self._reconfigure_servers)
         for publisher in self._publishers:
             release(publisher)
 

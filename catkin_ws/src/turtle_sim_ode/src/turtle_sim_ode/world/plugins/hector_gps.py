@@ -2,13 +2,14 @@
 gazebo_ros_gps.cpp): its tags and defaults, and Update's fix: the link's position and velocity through the sensor
 error model (hector_sensor_model), as latitude, longitude and altitude about a reference (the plugin's, or the
 world's <spherical_coordinates> with useWorldSphericalCoordinates), and the velocity turned by the heading; a new
-reference from the set_reference_geopose service (setGeoposeCb)."""
+reference from the set_reference_geopose service (setGeoposeCb); the fix status and services as the GNSS
+dynamic_reconfigure server sets them (dynamicReconfigureCallback)."""
 from __future__ import annotations
 
 import math
 import random
 from dataclasses import dataclass, field
-from typing import Mapping, Optional, Tuple
+from typing import Dict, Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel
 from turtle_sim_ode.models.text import read_number
@@ -22,7 +23,13 @@ MODEL_PLUGINS = (HECTOR_GPS,)
 EQUATORIAL_RADIUS = 6378137.0
 FLATTENING = 1.0 / 298.257223563
 EXCENTRICITY2 = 2 * FLATTENING - FLATTENING * FLATTENING
-STATUS_FIX = 0  # sensor_msgs/NavSatStatus
+# sensor_msgs/NavSatStatus: the status, and the augmentation bits set over STATUS_FIX (0).
+STATUS_NO_FIX, STATUS_FIX = -1, 0
+STATUS_FLAGS = (("STATUS_SBAS_FIX", 1), ("STATUS_GBAS_FIX", 2))
+# The service mask's bits.
+SERVICE_FLAGS = (("SERVICE_GPS", 1), ("SERVICE_GLONASS", 2), ("SERVICE_COMPASS", 4), ("SERVICE_GALILEO", 8))
+GNSS_FLAGS = ("STATUS_FIX",) + tuple(name for name, _ in STATUS_FLAGS + SERVICE_FLAGS)  # cfg/GNSS.cfg's fields
+GNSS_LEVEL = 1  # and their reconfiguration level
 
 
 @dataclass(frozen=True)
@@ -76,6 +83,8 @@ class GpsFix:
     altitude: float
     velocity: Vec3  # m/s, turned by the reference heading as Update turns it
     position_covariance: Tuple[float, ...]  # diagonal known
+    status: int  # sensor_msgs/NavSatStatus
+    service: int
 
 
 class HectorGps:
@@ -102,6 +111,7 @@ class HectorGps:
         prime_vertical = EQUATORIAL_RADIUS * math.sqrt(temp)
         self.radius_north = prime_vertical * (1 - EXCENTRICITY2) * temp
         self.radius_east = prime_vertical * math.cos(math.radians(latitude))
+        self.status, self.service = config.status, config.service
         rng = rng if rng is not None else random.Random()
         self.position_error = SensorError(config.position, rng)
         self.velocity_error = SensorError(config.velocity, rng)
@@ -124,6 +134,26 @@ class HectorGps:
         self.reference = (latitude, longitude, math.pi / 2.0 - yaw, altitude)
         self.reset()
 
+    def reconfigure_status(self, values: Mapping[str, bool], level: int) -> Dict[str, bool]:
+        """dynamicReconfigureCallback of the GNSS server. At level 1 (a client changed a flag) the status becomes
+        STATUS_NO_FIX without STATUS_FIX, else the bits of the augmentations set (0 for a plain fix), and the
+        service the bits of the services set; the flags stay as the client gave them. At any other level (the
+        server's first call) nothing changes and the flags are read from the bits as upstream reads them: so
+        STATUS_NO_FIX (-1, every bit set) reports both augmentations. Returns the flags to publish."""
+        if level == GNSS_LEVEL:
+            status = service = 0
+            for name, bit in STATUS_FLAGS:
+                status |= bit if values[name] else 0
+            for name, bit in SERVICE_FLAGS:
+                service |= bit if values[name] else 0
+            self.status = status if values["STATUS_FIX"] else STATUS_NO_FIX
+            self.service = service
+            return {name: bool(values[name]) for name in GNSS_FLAGS}
+        flags = {"STATUS_FIX": self.status != STATUS_NO_FIX}
+        flags.update((name, bool(self.status & bit)) for name, bit in STATUS_FLAGS)
+        flags.update((name, bool(self.service & bit)) for name, bit in SERVICE_FLAGS)
+        return flags
+
     def reset(self) -> None:
         self._last = None
         self.position_error.reset()
@@ -142,7 +172,8 @@ class HectorGps:
         self.position_error.current_drift = tuple(d + dt * v for d, v in zip(drift, velocity_drift))  # type: ignore
         latitude, longitude, heading, altitude = self.reference
         cos_h, sin_h = math.cos(heading), math.sin(heading)
-        position, noise = self.config.position.drift, self.config.position.gaussian_noise
+        model = self.position_error.model  # as reconfigured: Update reads the error model's members
+        position, noise = model.drift, model.gaussian_noise
         return GpsFix(
             latitude=latitude + (cos_h * x + sin_h * y) / self.radius_north * 180.0 / math.pi,
             longitude=longitude - (-sin_h * x + cos_h * y) / self.radius_east * 180.0 / math.pi,
@@ -151,4 +182,6 @@ class HectorGps:
             position_covariance=tuple(
                 position[i // 3] ** 2 + noise[i // 3] ** 2 if i % 4 == 0 else 0.0 for i in range(9)
             ),
+            status=self.status,
+            service=self.service,
         )
