@@ -11,7 +11,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Empty as EmptyMsg
 
-from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, plugin_topic, subscriber, topic_prefix
+from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, subscriber, topic_prefix
 from turtle_sim_ode.ros.plugin_topics import (
     DIFF_DRIVE_POSE_COVARIANCE,
     DIFF_DRIVE_TWIST_COVARIANCE,
@@ -90,6 +90,18 @@ class GazeboDriveInterface(Periodic):
     def close(self) -> None:
         release(self._command)
         release(self._odom_pub)
+
+
+def gazebo_drive_interfaces(
+    context: ModelContext, config: object, robot_type: type, interface_type: type, broadcast_tf: bool = True
+) -> List[Periodic]:
+    """A GazeboDriveInterface for the model's drive robot if ``config`` is the one that made it (the first drive
+    plugin; the others were warned about at spawn), with tf where ``broadcast_tf`` and the node publish it."""
+    robot = context.sim.robots.get(context.name)
+    if not isinstance(robot, robot_type) or robot.config is not config:
+        return []
+    tf = context.tf_broadcaster if broadcast_tf and context.settings.publish_tf else None
+    return [interface_type(context.name, robot, context.sim, tf, context.namespace)]
 
 
 class DriveInterface(Periodic):

@@ -12,7 +12,7 @@ from geometry_msgs.msg import Twist
 
 from turtle_sim_ode.models.builder import rpy_of
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic
-from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface
+from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface, gazebo_drive_interfaces
 from turtle_sim_ode.ros.throttle import logwarn_every
 from turtle_sim_ode.ros.wire import PackedPublisher
 from turtle_sim_ode.world.plugins.planar_move import PlanarMoveConfig, PlanarMoveRobot
@@ -70,9 +70,4 @@ class PlanarMoveInterface(GazeboDriveInterface):
 
 
 def interfaces(context: ModelContext, config: PlanarMoveConfig) -> List[Periodic]:
-    """The model's drive (the first drive plugin)."""
-    robot = context.sim.robots.get(context.name)
-    if not isinstance(robot, PlanarMoveRobot) or robot.config is not config:
-        return []
-    tf = context.tf_broadcaster if context.settings.publish_tf else None
-    return [PlanarMoveInterface(context.name, robot, context.sim, tf, context.namespace)]
+    return gazebo_drive_interfaces(context, config, PlanarMoveRobot, PlanarMoveInterface)

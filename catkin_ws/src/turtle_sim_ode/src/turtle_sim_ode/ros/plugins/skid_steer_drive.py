@@ -11,7 +11,7 @@ from typing import List, Optional, Tuple
 import rospy
 
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic
-from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface
+from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface, gazebo_drive_interfaces
 from turtle_sim_ode.ros.wire import PackedPublisher
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig, SkidSteerRobot
 from turtle_sim_ode.world.simulation import Simulation
@@ -50,9 +50,6 @@ class SkidSteerInterface(GazeboDriveInterface):
 
 
 def interfaces(context: ModelContext, config: SkidSteerConfig) -> List[Periodic]:
-    """The model's drive (the first drive plugin; the others were warned about at spawn)."""
-    robot = context.sim.robots.get(context.name)
-    if not isinstance(robot, SkidSteerRobot) or robot.config is not config:
-        return []
-    tf = context.tf_broadcaster if config.broadcast_tf and context.settings.publish_tf else None
-    return [SkidSteerInterface(context.name, robot, context.sim, tf, context.namespace)]
+    return gazebo_drive_interfaces(
+        context, config, SkidSteerRobot, SkidSteerInterface, broadcast_tf=config.broadcast_tf
+    )

@@ -15,7 +15,7 @@ from sensor_msgs.msg import JointState
 from turtle_sim_ode.models.builder import compose, inverse
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic
 from turtle_sim_ode.ros.plugin_topics import Vec3, resolve_frame
-from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface
+from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface, gazebo_drive_interfaces
 from turtle_sim_ode.ros.wire import JointStatePacker, PackedPublisher, Quat, TransformPacker, release
 from turtle_sim_ode.world.plugins.tricycle_drive import TricycleConfig, TricycleRobot
 from turtle_sim_ode.world.simulation import Simulation
@@ -99,9 +99,4 @@ class TricycleInterface(GazeboDriveInterface):
 
 
 def interfaces(context: ModelContext, config: TricycleConfig) -> List[Periodic]:
-    """The model's drive (the first drive plugin; the others were warned about at spawn)."""
-    robot = context.sim.robots.get(context.name)
-    if not isinstance(robot, TricycleRobot) or robot.config is not config:
-        return []
-    tf = context.tf_broadcaster if context.settings.publish_tf else None
-    return [TricycleInterface(context.name, robot, context.sim, tf, context.namespace)]
+    return gazebo_drive_interfaces(context, config, TricycleRobot, TricycleInterface)
