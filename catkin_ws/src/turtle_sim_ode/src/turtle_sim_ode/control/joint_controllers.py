@@ -89,26 +89,43 @@ class ForwardGroupCommand(Controller):
             joint.command = command
 
 
-class PidPosition(Controller):
+class _PidJoint(Controller):
+    """What the single-joint Pid controllers share: params ``joint`` and ``pid``, a float64 ``command``, and a
+    control_msgs/JointControllerState every STATE_EVERY updates."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.target = 0.0
+        self.count = 0
+
+    def init(self, hw: RobotHW, params: Params, robot: Optional[RobotModel]) -> None:
+        self.pid = Pid(read_gains(params.child("pid")))
+        self.joint = self.claim(hw, params.string("joint"))
+        self.inputs["command"] = ("float64", self._on_command)
+        self.outputs["state"] = "joint_controller_state"
+
+    def _on_command(self, value: float) -> None:
+        self.target = float(value)
+
+    def _command(self, time: float, period: float, target: float, error: float) -> None:
+        """The Pid's output on ``error`` to the joint, and the state now and then."""
+        self.joint.command = self.pid.compute(error, period)
+        if self.count % STATE_EVERY == 0:
+            self.publish("state", "joint_controller_state", state(self.pid, time, target, self.joint, error, period))
+        self.count += 1
+
+
+class PidPosition(_PidJoint):
     """effort_controllers/JointPositionController (effort out) and velocity_controllers/JointPositionController
     (velocity out): a Pid from ``pid`` on the position error, the velocity error being the derivative."""
 
     def __init__(self, interface: str) -> None:
         super().__init__()
         self.interface = interface
-        self.target = 0.0
-        self.count = 0
 
     def init(self, hw: RobotHW, params: Params, robot: Optional[RobotModel]) -> None:
-        name = params.string("joint")
-        self.pid = Pid(read_gains(params.child("pid")))
-        self.joint = self.claim(hw, name)
-        self.type = urdf_joint_type(robot, name)
-        self.inputs["command"] = ("float64", self._on_command)
-        self.outputs["state"] = "joint_controller_state"
-
-    def _on_command(self, value: float) -> None:
-        self.target = float(value)
+        super().init(hw, params, robot)
+        self.type = urdf_joint_type(robot, self.joint.name)
 
     def starting(self, time: float) -> None:
         self.target = limited_position(self.joint, self.joint.position)
@@ -117,33 +134,13 @@ class PidPosition(Controller):
 
     def update(self, time: float, period: float) -> None:
         target = limited_position(self.joint, self.target)
-        error = position_error(self.type, self.joint.position, target)
-        command = self.pid.compute(error, period)
-        self.joint.command = command
-        if self.count % STATE_EVERY == 0:
-            self.publish("state", "joint_controller_state", state(self.pid, time, target, self.joint, error, period))
-        self.count += 1
+        self._command(time, period, target, position_error(self.type, self.joint.position, target))
 
 
-class PidVelocity(Controller):
+class PidVelocity(_PidJoint):
     """effort_controllers/JointVelocityController: a Pid on command - velocity, effort out."""
 
     interface = EFFORT
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.target = 0.0
-        self.count = 0
-
-    def init(self, hw: RobotHW, params: Params, robot: Optional[RobotModel]) -> None:
-        name = params.string("joint")
-        self.pid = Pid(read_gains(params.child("pid")))
-        self.joint = self.claim(hw, name)
-        self.inputs["command"] = ("float64", self._on_command)
-        self.outputs["state"] = "joint_controller_state"
-
-    def _on_command(self, value: float) -> None:
-        self.target = float(value)
 
     def starting(self, time: float) -> None:
         self.target = 0.0
@@ -151,13 +148,7 @@ class PidVelocity(Controller):
         self.count = 0
 
     def update(self, time: float, period: float) -> None:
-        error = self.target - self.joint.velocity
-        self.joint.command = self.pid.compute(error, period)
-        if self.count % STATE_EVERY == 0:
-            self.publish(
-                "state", "joint_controller_state", state(self.pid, time, self.target, self.joint, error, period)
-            )
-        self.count += 1
+        self._command(time, period, self.target, self.target - self.joint.velocity)
 
 
 class PidGroupPosition(Controller):

@@ -12,7 +12,7 @@ import numpy as np
 import rospy
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 
-from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, plugin_topic, topic_prefix
+from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, topic_prefix
 from turtle_sim_ode.ros.wire import Packed, release
 from turtle_sim_ode.sensors.camera import CLOUD_POINT_STEP, CameraSensor, Frame
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
@@ -146,11 +146,8 @@ class CameraPublisher(Periodic):
         self._sensor = sensor
         self._scene = scene
         self._sun = sun
-        prefix = topic_prefix(namespace) + topic_prefix(config.camera_name)
-
-        def topic(name: str) -> str:
-            return plugin_topic("", name) if name.startswith("/") else prefix + name
-
+        self._prefix = topic_prefix(namespace) + topic_prefix(config.camera_name)
+        topic = self.topic
         messages = templates(sensor)
         self._image = (packed_publisher(topic(config.image_topic), Image), packer(messages["image"]))
         self._info = (packed_publisher(topic(config.info_topic), CameraInfo), packer(messages["info"]))
@@ -163,6 +160,10 @@ class CameraPublisher(Periodic):
             self._points = (packed_publisher(topic(config.points_topic), PointCloud2), packer(messages["points"]))
             self._channels += [self._depth, self._depth_info, self._points]
         self.rendered = 0  # renderings made: none while no image, depth or cloud subscriber listens
+
+    def topic(self, name: str) -> str:
+        """A topic of the camera's: under ``robotNamespace``/``cameraName``; an absolute name stays as it is."""
+        return name if name.startswith("/") else self._prefix + name
 
     @staticmethod
     def _heard(channel: Optional[tuple]) -> bool:

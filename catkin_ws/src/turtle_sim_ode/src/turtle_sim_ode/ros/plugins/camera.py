@@ -10,7 +10,7 @@ import rospy
 from std_msgs.msg import Empty
 
 from turtle_sim_ode.ros.camera_topics import CameraPublisher
-from turtle_sim_ode.ros.periodic import ModelContext, Periodic, subscriber, topic_prefix
+from turtle_sim_ode.ros.periodic import ModelContext, Periodic, subscriber
 from turtle_sim_ode.ros.wire import release
 from turtle_sim_ode.sensors.camera import CameraSensor
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
@@ -28,12 +28,9 @@ class TriggeredCameraPublisher(CameraPublisher):
     ) -> None:
         super().__init__(sensor, scene, namespace, sun)
         self._period = 0.0  # looks for a trigger at every step; renders only when triggered
-        config = sensor.config
         self._lock = threading.Lock()
         self._triggers = 0
-        prefix = topic_prefix(namespace) + topic_prefix(config.camera_name)
-        topic = config.trigger_topic if config.trigger_topic.startswith("/") else prefix + config.trigger_topic
-        self._trigger_sub = subscriber(topic, Empty, self._on_trigger, 1)
+        self._trigger_sub = subscriber(self.topic(sensor.config.trigger_topic), Empty, self._on_trigger, 1)
 
     def _on_trigger(self, _message: Empty) -> None:
         with self._lock:
