@@ -15,10 +15,11 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, quat_from_rpy, quat_matrix
+from turtle_sim_ode.models.builder import BuiltModel, quat_matrix
 from turtle_sim_ode.models.materials import GAZEBO_MATERIALS, RGB
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
+from turtle_sim_ode.sensors.mounted import MountedSensor
 from turtle_sim_ode.sensors.ray_kernel import RayCaster, primitive_row
 from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
 from turtle_sim_ode.sensors.raycast import Primitive, hit_plane, hit_triangle, mesh_triangles
@@ -44,7 +45,7 @@ class Frame:
     pose: Tuple[np.ndarray, np.ndarray]
 
 
-class CameraSensor:
+class CameraSensor(MountedSensor):
     """Renders ``config``'s camera on ``link`` of ``model``: every model but its own (see sensors.scene), and the
     ground."""
 
@@ -62,12 +63,7 @@ class CameraSensor:
         """``sun_direction`` (the world's directional light) and ``sky`` default to Gazebo's; ``ray_kernel``: cast
         the rays in C (src/ray_kernel.c) when the library is built, else with numpy; ``threads``: the C kernel's
         (default: every CPU the process may use)."""
-        model.link_transform(config.link)  # KeyError now for a missing link
-        self.physics = physics
-        self.model = model
-        self.config = config
-        self._rng = np.random.default_rng((rng or random.Random()).getrandbits(32))
-        self._mount: Transform = (tuple(config.pose[:3]), quat_from_rpy(*config.pose[3:]))  # type: ignore[assignment]
+        super().__init__(physics, model, config, rng)
         width, height = config.width, config.height
         self.focal_length = config.focal_length
         self.cx, self.cy = (width - 1) / 2.0, (height - 1) / 2.0
@@ -104,7 +100,7 @@ class CameraSensor:
 
     def optical_pose(self) -> Tuple[np.ndarray, np.ndarray]:
         """The optical frame's origin and rotation (world from optical) now."""
-        position, quaternion = compose(self.model.link_transform(self.config.link), self._mount)
+        position, quaternion = self.world_transform()
         world_from_sensor = np.array(quat_matrix(quaternion))
         return np.array(position), world_from_sensor @ OPTICAL_FROM_SENSOR.T
 

@@ -9,9 +9,10 @@ from typing import List, Optional, Tuple
 
 import numpy as np
 
-from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, quat_from_rpy, quat_matrix
+from turtle_sim_ode.models.builder import BuiltModel, quat_matrix
 from turtle_sim_ode.physics.trimesh import MeshGeom
 from turtle_sim_ode.physics.world import PhysicsWorld
+from turtle_sim_ode.sensors.mounted import MountedSensor
 from turtle_sim_ode.sensors.ray_kernel import PLANE, MeshItem, cast_rays, mesh_pose, primitive_row, usable_cpus
 from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
 from turtle_sim_ode.sensors.raycast import Primitive, hit_plane, hit_triangle, mesh_triangles
@@ -26,7 +27,7 @@ def grid_angles(count: int, low: float, high: float) -> np.ndarray:
     return low + np.arange(count) * ((high - low) / (count - 1)) if count > 1 else np.array([low])
 
 
-class MultiBeamLidar:
+class MultiBeamLidar(MountedSensor):
     """``ranges()``: (vertical_samples, samples) distances (m) along rays at yaw y_i and pitch p_j in the sensor
     frame, direction (cos p cos y, cos p sin y, sin p) as Gazebo's MultiRayShape has it; a ray sees what lies
     between range_min and range_max, and reads range_max where it hits nothing (as Gazebo's RaySensor)."""
@@ -40,12 +41,7 @@ class MultiBeamLidar:
         ray_kernel: bool = True,
         threads: Optional[int] = None,
     ) -> None:
-        model.link_transform(config.link)  # KeyError now for a missing link
-        self.physics = physics
-        self.model = model
-        self.config = config
-        self._rng = np.random.default_rng((rng or random.Random()).getrandbits(32))
-        self._mount: Transform = (tuple(config.pose[:3]), quat_from_rpy(*config.pose[3:]))  # type: ignore[assignment]
+        super().__init__(physics, model, config, rng)
         self.yaws = grid_angles(config.samples, config.min_angle, config.max_angle)
         self.pitches = grid_angles(config.vertical_samples, config.vertical_min_angle, config.vertical_max_angle)
         pitch, yaw = np.meshgrid(self.pitches, self.yaws, indexing="ij")
@@ -65,7 +61,7 @@ class MultiBeamLidar:
 
     def pose(self) -> Tuple[np.ndarray, np.ndarray]:
         """The sensor's origin and rotation (world from sensor) now."""
-        position, quaternion = compose(self.model.link_transform(self.config.link), self._mount)
+        position, quaternion = self.world_transform()
         return np.array(position), np.array(quat_matrix(quaternion))
 
     def _shapes(self, origin: np.ndarray) -> Tuple[np.ndarray, List[MeshItem]]:
