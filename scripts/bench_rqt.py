@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import json
 import os
 import shutil
 import signal
@@ -24,7 +23,7 @@ import tempfile
 from typing import Any, Dict, Optional, Sequence
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from bench_report import machine  # noqa: E402
+from bench_report import close_machine, machine, write_report  # noqa: E402
 from bench_rqt_sections import console_flood, plot_injected, plot_real_time  # noqa: E402
 from process_stats import cpu_ticks  # noqa: E402
 from ros_master import master  # noqa: E402
@@ -182,16 +181,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                 wanted,
             )
             rospy.signal_shutdown("benchmark done")
-    ticks, stolen = (end - start for end, start in zip(cpu_ticks(), ticks_at_start))
-    results["machine"]["stolen_cpu_share"] = stolen / ticks if ticks else 0.0
-    results["machine"]["load_average_at_end"] = os.getloadavg()[0]
-    print()
-    print(table(results))
-    os.makedirs(os.path.dirname(os.path.abspath(args.json)), exist_ok=True)
-    with open(args.json, "w") as out:
-        json.dump(results, out, indent=2)
-    print("\nJSON: " + args.json)
-    return 1 if any("error" in value for value in results.values() if isinstance(value, dict)) else 0
+    close_machine(results, ticks_at_start)
+    return write_report(results, table(results), args.json)
 
 
 if __name__ == "__main__":

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import json
 import os
 import shutil
 import signal
@@ -40,7 +39,7 @@ from bench_node import camera_node, full_node, launch_to_first_odom, real_time  
 from bench_peer import peer  # noqa: E402
 from bench_physics import physics_only  # noqa: E402
 from bench_plan import FULL, QUICK, REPO, Plan  # noqa: E402
-from bench_report import machine, table, targets  # noqa: E402
+from bench_report import close_machine, machine, table, targets, write_report  # noqa: E402
 from process_stats import cpu_ticks  # noqa: E402
 from ros_processes import Processes, ToolError  # noqa: E402
 
@@ -94,17 +93,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         measure(results, "cameras", "6. cameras", lambda: cameras(plan, processes))
         measure(results, "lidar", "7. lidar", lambda: lidar_cost(plan.physics_steps, plan.physics_repeats))
         measure(results, "ros_control", "8. ros_control", lambda: ros_control_cost(plan))
-    results["machine"]["load_average_at_end"] = os.getloadavg()[0]
-    ticks, stolen = (end - start for end, start in zip(cpu_ticks(), ticks_at_start))
-    results["machine"]["stolen_cpu_share"] = stolen / ticks if ticks else 0.0
+    close_machine(results, ticks_at_start)
     results["targets"] = targets(results)
-    print()
-    print(table(results))
-    os.makedirs(os.path.dirname(os.path.abspath(args.json)), exist_ok=True)
-    with open(args.json, "w") as out:
-        json.dump(results, out, indent=2)
-    print("\nJSON: " + args.json)
-    return 1 if any("error" in value for value in results.values() if isinstance(value, dict)) else 0
+    return write_report(results, table(results), args.json)
 
 
 if __name__ == "__main__":

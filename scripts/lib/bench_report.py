@@ -2,6 +2,7 @@
 results, and the human-readable table."""
 from __future__ import annotations
 
+import json
 import os
 import platform
 import shutil
@@ -12,6 +13,7 @@ from bench_camera import CAMERAS, TARGET_SHARE
 from bench_camera import table as camera_table
 from bench_lidar import table as lidar_table
 from bench_control import table as control_table
+from process_stats import cpu_ticks
 
 
 def debian_version(package: str) -> str:
@@ -42,6 +44,24 @@ def machine() -> Dict[str, Any]:
         "ode": debian_version("libode8"),
         "load_average_at_start": os.getloadavg()[0],
     }
+
+
+def close_machine(results: Dict[str, Any], ticks_at_start: Tuple[int, int]) -> None:
+    """What the machine did during the run: the share of CPU time the host stole, the load at the end."""
+    ticks, stolen = (end - start for end, start in zip(cpu_ticks(), ticks_at_start))
+    results["machine"]["stolen_cpu_share"] = stolen / ticks if ticks else 0.0
+    results["machine"]["load_average_at_end"] = os.getloadavg()[0]
+
+
+def write_report(results: Dict[str, Any], text: str, json_path: str) -> int:
+    """Print the table ``text``, write ``results`` as JSON; exit status 1 if a section failed."""
+    print()
+    print(text)
+    os.makedirs(os.path.dirname(os.path.abspath(json_path)), exist_ok=True)
+    with open(json_path, "w") as out:
+        json.dump(results, out, indent=2)
+    print("\nJSON: " + json_path)
+    return 1 if any("error" in value for value in results.values() if isinstance(value, dict)) else 0
 
 
 def find_run(results: Dict[str, Any], robots: int, time_step: float) -> Optional[Dict[str, Any]]:
