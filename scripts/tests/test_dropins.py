@@ -206,14 +206,19 @@ def test_a_dropin_in_an_underlay_or_the_workspace_itself_is_not_real(workspace):
     assert sorted(result.stdout.split()) == [str(src / "gazebo_ros"), str(src / "xacro")]
 
 
-@pytest.mark.parametrize("platform", ["debian", "ubuntu"])
-def test_resolver_installs_the_real_xacro_where_the_platform_has_it(platform):
+def resolved_packages(platform):
+    """The system packages scripts/lib/resolve_deps.py asks for on ``platform``."""
     result = subprocess.run(
         [sys.executable, os.path.join(REPO, "scripts", "lib", "resolve_deps.py"), "--platform", platform],
         stdout=subprocess.PIPE,
         universal_newlines=True,
     )
-    packages = result.stdout.split()
+    return result.stdout.split()
+
+
+@pytest.mark.parametrize("platform", ["debian", "ubuntu"])
+def test_resolver_installs_the_real_xacro_where_the_platform_has_it(platform):
+    packages = resolved_packages(platform)
     if platform == "ubuntu":
         assert "ros-noetic-xacro" in packages
     else:
@@ -222,29 +227,27 @@ def test_resolver_installs_the_real_xacro_where_the_platform_has_it(platform):
     assert not any("gazebo-ros" in p for p in packages)
 
 
-ROS_CONTROL_DROPINS = ("control_msgs", "controller_manager", "controller_manager_msgs")
+# Packages Debian 12 lacks and the ROS apt repository has (ros-noetic-*): ros_control's, and geographic_info's
+# messages for hector's GPS service.
+RELEASED_DROPINS = ("control_msgs", "controller_manager", "controller_manager_msgs", "geographic_msgs", "uuid_msgs")
 
 
-def test_the_ros_control_message_packages_are_dropins(tmp_path):
-    """Debian 12 has no control_msgs, controller_manager or controller_manager_msgs; Ubuntu's ros-noetic-* ones win
-    where installed."""
+def test_the_packages_debian_lacks_are_dropins(tmp_path):
+    """Debian 12 has none of RELEASED_DROPINS; Ubuntu's ros-noetic-* ones win where installed, one by one."""
     src = tmp_path / "ws" / "src"
-    for name in ROS_CONTROL_DROPINS:
+    for name in RELEASED_DROPINS:
         shutil.copytree(os.path.join(SRC, name), str(src / name), ignore=shutil.ignore_patterns("CATKIN_IGNORE"))
     (tmp_path / "system" / "share").mkdir(parents=True)
-    assert sorted(apply(tmp_path).stdout.split()) == [str(src / name) for name in ROS_CONTROL_DROPINS]
+    assert sorted(apply(tmp_path).stdout.split()) == [str(src / name) for name in RELEASED_DROPINS]
     install_system_package(tmp_path, "control_msgs")
-    assert apply(tmp_path).stdout.split() == [str(src / "controller_manager"), str(src / "controller_manager_msgs")]
+    install_system_package(tmp_path, "uuid_msgs")
+    expected = [str(src / name) for name in ("controller_manager", "controller_manager_msgs", "geographic_msgs")]
+    assert apply(tmp_path).stdout.split() == expected
 
 
 @pytest.mark.parametrize("platform", ["debian", "ubuntu"])
-def test_resolver_installs_the_real_ros_control_packages_where_the_platform_has_them(platform):
-    result = subprocess.run(
-        [sys.executable, os.path.join(REPO, "scripts", "lib", "resolve_deps.py"), "--platform", platform],
-        stdout=subprocess.PIPE,
-        universal_newlines=True,
-    )
-    packages = result.stdout.split()
-    for name in ROS_CONTROL_DROPINS:
+def test_resolver_installs_the_real_packages_where_the_platform_has_them(platform):
+    packages = resolved_packages(platform)
+    for name in RELEASED_DROPINS:
         real = "ros-noetic-" + name.replace("_", "-")
         assert (real in packages) == (platform == "ubuntu")
