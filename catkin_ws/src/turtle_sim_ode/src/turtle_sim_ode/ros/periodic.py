@@ -11,6 +11,7 @@ import rospy
 from turtle_sim_ode.models.builder import BuiltModel
 from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import PackedPublisher, stamp_parts
+from turtle_sim_ode.world.plugins.p3d import find_body
 from turtle_sim_ode.world.simulation import Simulation
 
 
@@ -106,3 +107,12 @@ class ModelContext:
     @property
     def model(self) -> BuiltModel:
         return self.sim.models[self.name]
+
+    def body_link(self, body: str, plugin: str, outcome: str = "not published") -> Optional[str]:
+        """The link a plugin's ``bodyName`` names ('model::link' scoped too; "" the model's canonical link), or
+        None after a warning that names the plugin and what follows (``outcome``)."""
+        model = self.model
+        link = find_body(list(model.links), body) if body else model.root_link
+        if link is None:
+            rospy.logwarn("model %s: %s bodyName [%s] is not a link: %s", self.name, plugin, body, outcome)
+        return link

@@ -14,7 +14,6 @@ from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, pu
 from turtle_sim_ode.ros.plugin_topics import own_tf_prefix, resolve_frame
 from turtle_sim_ode.ros.wire import release
 from turtle_sim_ode.world.plugins.f3d import F3dConfig, LinkForce
-from turtle_sim_ode.world.plugins.p3d import find_body
 
 
 class F3dPublisher(Periodic):
@@ -44,9 +43,8 @@ class F3dPublisher(Periodic):
 
 def interfaces(context: ModelContext, config: F3dConfig) -> List[Periodic]:
     model = context.model
-    link = find_body(list(model.links), config.body)
+    link = context.body_link(config.body, "f3d")
     if link is None:
-        rospy.logwarn("model %s: f3d bodyName [%s] is not a link: not published", context.name, config.body)
         return []
     reader = LinkForce(context.sim.physics, model, link)
     try:

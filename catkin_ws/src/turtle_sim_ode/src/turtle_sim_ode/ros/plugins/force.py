@@ -11,7 +11,6 @@ from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, su
 from turtle_sim_ode.ros.throttle import logwarn_every
 from turtle_sim_ode.ros.wire import release
 from turtle_sim_ode.world.plugins.force import ForceConfig, LinkWrench
-from turtle_sim_ode.world.plugins.p3d import find_body
 
 
 class ForceInterface(Periodic):
@@ -34,9 +33,7 @@ class ForceInterface(Periodic):
 
 
 def interfaces(context: ModelContext, config: ForceConfig) -> List[Periodic]:
-    model = context.model
-    link = find_body(list(model.links), config.body)
+    link = context.body_link(config.body, "force plugin", "no force")
     if link is None:
-        rospy.logwarn("model %s: force plugin bodyName [%s] is not a link: no force", context.name, config.body)
         return []
-    return [ForceInterface(context.name, LinkWrench(model, link), config, context.namespace)]
+    return [ForceInterface(context.name, LinkWrench(context.model, link), config, context.namespace)]

@@ -88,10 +88,8 @@ class HectorGpsPublisher(Periodic):
 
 
 def interfaces(context: ModelContext, config: HectorGpsConfig) -> List[Periodic]:
-    model = context.model
-    link = config.body or model.root_link
-    if link not in model.links:
-        rospy.logwarn("model %s: hector GPS bodyName [%s] is not a link: not published", context.name, link)
+    link = context.body_link(config.body, "hector GPS")
+    if link is None:
         return []
-    gps = HectorGps(model, link, config, context.sim.spherical_coordinates)
+    gps = HectorGps(context.model, link, config, context.sim.spherical_coordinates)
     return [HectorGpsPublisher(gps, context.namespace)]

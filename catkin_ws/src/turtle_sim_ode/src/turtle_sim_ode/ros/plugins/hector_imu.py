@@ -113,10 +113,8 @@ class HectorImuPublisher(Periodic):
 
 
 def interfaces(context: ModelContext, config: HectorImuConfig) -> List[Periodic]:
-    model = context.model
-    link = config.body or model.root_link  # no bodyName: the model's canonical link
-    if link not in model.links:
-        rospy.logwarn("model %s: hector IMU bodyName [%s] is not a link: not published", context.name, link)
+    link = context.body_link(config.body, "hector IMU")  # no bodyName: the model's canonical link
+    if link is None:
         return []
-    imu = HectorImu(model, link, config, tuple(context.sim.physics.params.gravity))
+    imu = HectorImu(context.model, link, config, tuple(context.sim.physics.params.gravity))
     return [HectorImuPublisher(imu, context.namespace)]

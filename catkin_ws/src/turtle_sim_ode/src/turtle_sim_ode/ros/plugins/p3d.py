@@ -11,7 +11,7 @@ from turtle_sim_ode.models.builder import BuiltModel, quat_from_rpy, quat_multip
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, topic_prefix
 from turtle_sim_ode.ros.plugin_topics import Vec3, own_tf_prefix, period, resolve_frame, rotate_inverse
 from turtle_sim_ode.ros.wire import OdometryPacker, release
-from turtle_sim_ode.world.plugins import GroundTruthConfig, find_body
+from turtle_sim_ode.world.plugins import GroundTruthConfig
 
 
 class GroundTruthPublisher(Periodic):
@@ -83,9 +83,9 @@ class GroundTruthPublisher(Periodic):
 
 
 def interfaces(context: ModelContext, config: GroundTruthConfig) -> List[Periodic]:
-    model = context.model
-    link = find_body(list(model.links), config.body)
+    link = context.body_link(config.body, "p3d")
     if link is None:
-        rospy.logwarn("model %s: p3d bodyName [%s] is not a link: not published", context.name, config.body)
         return []
-    return [GroundTruthPublisher.from_p3d(model, link, config, context.namespace, context.settings.publish_rate)]
+    return [
+        GroundTruthPublisher.from_p3d(context.model, link, config, context.namespace, context.settings.publish_rate)
+    ]
