@@ -22,7 +22,8 @@ from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.f3d import F3D, F3dConfig, LinkForce
 from turtle_sim_ode.world.plugins.force import LinkWrench
-from turtle_sim_ode.world.plugins.ft_sensor import FT_SENSOR, FtSensorConfig, JointWrench, noisy, sensor_joint
+from turtle_sim_ode.world.plugins.ft_sensor import FT_SENSOR, FtSensorConfig, JointWrench, sensor_joint
+from turtle_sim_ode.world.plugins.p3d import noisy
 from turtle_sim_ode.world.simulation import Simulation
 
 MODELS = Path(__file__).resolve().parents[1] / "models"

@@ -11,7 +11,8 @@ from geometry_msgs.msg import WrenchStamped
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, publisher
 from turtle_sim_ode.ros.plugin_topics import own_tf_prefix, period, resolve_frame
 from turtle_sim_ode.ros.wire import release
-from turtle_sim_ode.world.plugins.ft_sensor import FtSensorConfig, JointWrench, noisy, sensor_joint
+from turtle_sim_ode.world.plugins.ft_sensor import FtSensorConfig, JointWrench, sensor_joint
+from turtle_sim_ode.world.plugins.p3d import noisy
 
 
 class FtSensorPublisher(Periodic):

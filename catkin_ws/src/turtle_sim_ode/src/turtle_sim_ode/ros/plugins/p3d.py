@@ -1,8 +1,7 @@
 """gazebo_ros_p3d's topic (world.plugins.p3d): a link's true pose and velocity as nav_msgs/Odometry."""
 from __future__ import annotations
 
-import random
-from typing import List, Sequence
+from typing import List
 
 import rospy
 from nav_msgs.msg import Odometry
@@ -12,6 +11,7 @@ from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher
 from turtle_sim_ode.ros.plugin_topics import Vec3, own_tf_prefix, period, resolve_frame, rotate_inverse
 from turtle_sim_ode.ros.wire import OdometryPacker, release
 from turtle_sim_ode.world.plugins import GroundTruthConfig
+from turtle_sim_ode.world.plugins.p3d import noisy
 
 
 class GroundTruthPublisher(Periodic):
@@ -60,22 +60,17 @@ class GroundTruthPublisher(Periodic):
             config.rpy_offset,
         )
 
-    def _noisy(self, values: Sequence[float]) -> Vec3:
-        if not self._noise:
-            return tuple(values)  # type: ignore[return-value]
-        return tuple(v + random.gauss(0.0, self._noise) for v in values)  # type: ignore[return-value]
-
     def publish(self, stamp: rospy.Time, now: float) -> None:
         if not self._pub.get_num_connections():
             return
         (px, py, pz), (w, x, y, z) = self._model.link_transform(self._link)
         linear, angular = self._model.link_twist(self._link)
         ow, ox, oy, oz = quat_multiply(self._rotation_offset, (w, x, y, z))
-        position = self._noisy((px + self._offset[0], py + self._offset[1], pz + self._offset[2]))
+        position = noisy((px + self._offset[0], py + self._offset[1], pz + self._offset[2]), self._noise)
         if self._twist_in_body:
             linear, angular = rotate_inverse((x, y, z, w), linear), rotate_inverse((x, y, z, w), angular)
-        linear = self._noisy(linear)
-        angular = self._noisy(angular)
+        linear = noisy(linear, self._noise)
+        angular = noisy(angular, self._noise)
         self._pub.publish(self._packer.pack, stamp.secs, stamp.nsecs, position, (ox, oy, oz, ow), linear, angular)
 
     def close(self) -> None:

@@ -22,10 +22,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import List, Mapping, Optional, Sequence, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, Matrix3, Vec3, quat_matrix
+from turtle_sim_ode.models.builder import BuiltModel, Matrix3, Vec3, _rotated_inertia
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.physics.world import PhysicsWorld
+from turtle_sim_ode.world.kinematics import cross
 from turtle_sim_ode.world.plugins.tags import text
 
 F3D = "libgazebo_ros_f3d.so"
@@ -49,18 +50,6 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
 
 def _times(m: Sequence[Sequence[float]], v: Sequence[float]) -> Vec3:
     return tuple(m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2] for r in range(3))  # type: ignore[return-value]
-
-
-def _cross(a: Sequence[float], b: Sequence[float]) -> Vec3:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _world_inertia(rotation: Matrix3, inertia: Matrix3) -> Matrix3:
-    """R I Rᵀ."""
-    ri = [[sum(rotation[r][k] * inertia[k][c] for k in range(3)) for c in range(3)] for r in range(3)]
-    return tuple(  # type: ignore[return-value]
-        tuple(sum(ri[r][k] * rotation[c][k] for k in range(3)) for c in range(3)) for r in range(3)
-    )
 
 
 def _inverse(m: Matrix3) -> Optional[Matrix3]:
@@ -103,7 +92,7 @@ class LinkForce:
         self._body = body
         mass = body.getMass()
         self._mass, self._inertia = mass.mass, mass.I
-        start: List[Optional[tuple]] = [None]  # (force, torque, velocity, angular velocity, rotation) at the start
+        start: List[Optional[tuple]] = [None]  # (force, torque, velocity, angular velocity, quaternion) at the start
 
         def before_step() -> None:  # a closure: the world must not hold this object (see models.builder)
             start[0] = (
@@ -111,7 +100,7 @@ class LinkForce:
                 body.getTorque(),
                 body.getLinearVel(),
                 body.getAngularVel(),
-                quat_matrix(body.getQuaternion()),
+                body.getQuaternion(),
             )
 
         self._start = start
@@ -122,15 +111,15 @@ class LinkForce:
         """(force, torque) of the step just taken, of length ``time_step``."""
         if self._start[0] is None:
             return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
-        _, torque0, velocity0, spin0, rotation = self._start[0]
+        _, torque0, velocity0, spin0, orientation = self._start[0]
         velocity, spin = self._body.getLinearVel(), self._body.getAngularVel()
         force = tuple(self._mass * (velocity[i] - velocity0[i]) / time_step for i in range(3))
-        inertia = _world_inertia(rotation, self._inertia)
+        inertia = _rotated_inertia(orientation, self._inertia)
         implicit = _implicit_gyroscopic(inertia, spin0, time_step)
         inverse = _inverse(inertia)  # a body's inertia is positive definite: never None
         explained = _times(inverse, [torque0[i] + implicit[i] for i in range(3)]) if inverse else (0.0, 0.0, 0.0)
         constraint = [(spin[i] - spin0[i]) / time_step - explained[i] for i in range(3)]
-        gyroscopic = _cross(spin0, _times(inertia, spin0))  # as Gazebo's ODE subtracts it (explicitly)
+        gyroscopic = cross(spin0, _times(inertia, spin0))  # as Gazebo's ODE subtracts it (explicitly)
         added = _times(self._inertia, constraint)  # the body-frame inertia, as dxUpdateBodies weights it
         return force, tuple(torque0[i] - gyroscopic[i] + added[i] for i in range(3))  # type: ignore[return-value]
 

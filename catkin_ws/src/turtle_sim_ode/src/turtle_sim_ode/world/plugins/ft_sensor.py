@@ -17,13 +17,13 @@ default, where the plugin then finds no joint ("jointName: ... does not exist") 
 ModelError."""
 from __future__ import annotations
 
-import random
 from dataclasses import dataclass
 from typing import Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, JointHandle, Vec3, quat_rotate
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.world.kinematics import add, conjugate, cross, sub
 from turtle_sim_ode.world.plugins.tags import number, text
 
 FT_SENSOR = "libgazebo_ros_ft_sensor.so"
@@ -75,21 +75,8 @@ class JointWrench:
     def wrench(self) -> Tuple[Vec3, Vec3]:
         """(force, torque) of the last step."""
         f1, t1, _, _ = self._joint.getFeedback()
-        origin, (w, x, y, z) = self._model.link_transform(self.child)
-        centre = self._body.getPosition()
-        arm = (origin[0] - centre[0], origin[1] - centre[1], origin[2] - centre[2])
-        moment = (
-            t1[0] + f1[1] * arm[2] - f1[2] * arm[1],
-            t1[1] + f1[2] * arm[0] - f1[0] * arm[2],
-            t1[2] + f1[0] * arm[1] - f1[1] * arm[0],
-        )
-        to_link = (w, -x, -y, -z)
+        origin, orientation = self._model.link_transform(self.child)
+        moment = add(t1, cross(f1, sub(origin, self._body.getPosition())))
+        to_link = conjugate(orientation)
         force = quat_rotate(to_link, (-f1[0], -f1[1], -f1[2]))
         return force, quat_rotate(to_link, (-moment[0], -moment[1], -moment[2]))
-
-
-def noisy(values: Vec3, sigma: float) -> Vec3:
-    """GazeboRosFT::GaussianKernel(0, sigma) added to each value (none for sigma 0)."""
-    if not sigma:
-        return values
-    return tuple(v + random.gauss(0.0, sigma) for v in values)  # type: ignore[return-value]

@@ -1,9 +1,11 @@
 """gazebo_ros_p3d (``libgazebo_ros_p3d.so``): a body's pose and velocity from the physics state."""
 from __future__ import annotations
 
+import random
 from dataclasses import dataclass
 from typing import List, Mapping, Optional, Tuple
 
+from turtle_sim_ode.models.builder import Vec3
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.plugins.tags import number, text, triple
@@ -46,3 +48,10 @@ def find_body(link_names: List[str], body: str) -> Optional[str]:
     """p3d's bodyName may be scoped ('model::link'): the link it names, if the model has it."""
     name = body.split("::")[-1]
     return name if name in link_names else None
+
+
+def noisy(values: Vec3, sigma: float) -> Vec3:
+    """GaussianKernel(0, sigma) added to each value, none for sigma 0 (gazebo_ros_p3d.cpp, gazebo_ros_ft_sensor.cpp)."""
+    if not sigma:
+        return values
+    return tuple(v + random.gauss(0.0, sigma) for v in values)  # type: ignore[return-value]
