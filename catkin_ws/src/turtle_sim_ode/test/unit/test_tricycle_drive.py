@@ -331,4 +331,5 @@ def test_any_commands_keep_the_sim_alive(commands, acceleration, steering_speed)
     position, orientation = model.link_pose("base_link")
     assert all(math.isfinite(value) for value in position + orientation)
     assert abs(robot.drive.applied[0]) <= 1e4  # the wheel speed held to MAX_WHEEL_SPEED
-    assert -1.2 - 1e-9 <= robot.drive.steering.angle() <= 1.2 + 0.05  # the joint's limits
+    # the joint's limits, as ODE holds them (softly, by its ERP: a hair past either side, e.g. -1.2000009 rad)
+    assert abs(robot.drive.steering.angle()) <= 1.2 + 0.05
