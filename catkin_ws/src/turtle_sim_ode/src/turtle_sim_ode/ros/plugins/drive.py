@@ -11,6 +11,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Empty as EmptyMsg
 
+from turtle_sim_ode.models.builder import BuiltModel
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, subscriber, topic_prefix
 from turtle_sim_ode.ros.plugin_topics import (
     DIFF_DRIVE_POSE_COVARIANCE,
@@ -90,6 +91,19 @@ class GazeboDriveInterface(Periodic):
     def close(self) -> None:
         release(self._command)
         release(self._odom_pub)
+
+
+def yaw_frame_odometry(model: BuiltModel) -> Tuple[Vec3, Quat, Vec3, Vec3]:
+    """The model's pose from the physics state (its canonical link's), and its twist as the skid steer's and the
+    tricycle's publishOdometry give it: the world velocity's x and y turned into the yaw frame (z 0), and the
+    world's yaw rate."""
+    position, orientation = model.link_pose(model.root_link)
+    linear, angular = model.link_twist(model.root_link)
+    x, y, z, w = orientation
+    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    cos_yaw, sin_yaw = math.cos(yaw), math.sin(yaw)
+    twist = (cos_yaw * linear[0] + sin_yaw * linear[1], cos_yaw * linear[1] - sin_yaw * linear[0], 0.0)
+    return position, orientation, twist, (0.0, 0.0, angular[2])
 
 
 def gazebo_drive_interfaces(

@@ -5,13 +5,12 @@ The odometry is the model's pose from the physics state (publishOdometry: positi
 orientation; twist x, y in the yaw-rotated frame and the world's yaw rate), covariances from the tags."""
 from __future__ import annotations
 
-import math
 from typing import List, Optional, Tuple
 
 import rospy
 
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic
-from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface, gazebo_drive_interfaces
+from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface, gazebo_drive_interfaces, yaw_frame_odometry
 from turtle_sim_ode.ros.wire import PackedPublisher
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig, SkidSteerRobot
 from turtle_sim_ode.world.simulation import Simulation
@@ -33,18 +32,10 @@ class SkidSteerInterface(GazeboDriveInterface):
         super().__init__(name, robot, sim, tf, namespace, rate, covariances, covariances)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        model = self.robot.model
-        position, orientation = model.link_pose(model.root_link)  # the model's pose (its canonical link's)
-        linear, angular = model.link_twist(model.root_link)
-        x, y, z, w = orientation
-        yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-        cos_yaw, sin_yaw = math.cos(yaw), math.sin(yaw)
-        twist_linear = (cos_yaw * linear[0] + sin_yaw * linear[1], cos_yaw * linear[1] - sin_yaw * linear[0], 0.0)
+        position, orientation, linear, angular = yaw_frame_odometry(self.robot.model)
         secs, nsecs = stamp.secs, stamp.nsecs
         planar = (position[0], position[1], 0.0)
-        self._odom_pub.publish(
-            self._odom_packer.pack, secs, nsecs, planar, orientation, twist_linear, (0.0, 0.0, angular[2])
-        )
+        self._odom_pub.publish(self._odom_packer.pack, secs, nsecs, planar, orientation, linear, angular)
         if self._tf is not None:
             self._tf.publish(self._tf_packer.pack, secs, nsecs, position, orientation)
 

@@ -15,26 +15,13 @@ from sensor_msgs.msg import JointState
 from turtle_sim_ode.models.builder import compose, inverse
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic
 from turtle_sim_ode.ros.plugin_topics import Vec3, resolve_frame
-from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface, gazebo_drive_interfaces
+from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface, gazebo_drive_interfaces, yaw_frame_odometry
 from turtle_sim_ode.ros.wire import JointStatePacker, PackedPublisher, Quat, TransformPacker, release
 from turtle_sim_ode.world.plugins.tricycle_drive import TricycleConfig, TricycleRobot
 from turtle_sim_ode.world.simulation import Simulation
 
 # publishOdometry's pose covariance (x, y 1e-5; z, roll, pitch 1e12; yaw 1e-3); its twist covariance stays 0.
 POSE_COVARIANCE = tuple({0: 1e-5, 7: 1e-5, 14: 1e12, 21: 1e12, 28: 1e12, 35: 1e-3}.get(i, 0.0) for i in range(36))
-
-
-def world_odometry(robot: TricycleRobot) -> Tuple[Vec3, Quat, Vec3, Vec3]:
-    """publishOdometry with odometrySource world: the model's pose (z included) and its world velocity, x and y
-    turned into the yaw frame, with the world's yaw rate."""
-    model = robot.model
-    position, orientation = model.link_pose(model.root_link)
-    linear, angular = model.link_twist(model.root_link)
-    x, y, z, w = orientation
-    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-    cos_yaw, sin_yaw = math.cos(yaw), math.sin(yaw)
-    twist = (cos_yaw * linear[0] + sin_yaw * linear[1], cos_yaw * linear[1] - sin_yaw * linear[0], 0.0)
-    return position, orientation, twist, (0.0, 0.0, angular[2])
 
 
 def encoder_odometry(robot: TricycleRobot) -> Tuple[Vec3, Quat, Vec3, Vec3]:
@@ -58,7 +45,7 @@ class TricycleInterface(GazeboDriveInterface):
         config = robot.config
         super().__init__(name, robot, sim, tf, namespace, config.update_rate, POSE_COVARIANCE)  # type: ignore
         prefix = self.frame_prefix
-        self._odometry = encoder_odometry if config.odometry_source == "encoder" else world_odometry
+        self._encoder_odometry = config.odometry_source == "encoder"
         joints = config.joints_needed
         links = robot.model.robot.joints
         # publishWheelTF: the joint's parent link -> a frame named after the joint, at the child link's pose in the
@@ -77,7 +64,9 @@ class TricycleInterface(GazeboDriveInterface):
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         secs, nsecs = stamp.secs, stamp.nsecs
-        position, orientation, linear, angular = self._odometry(self.robot)
+        robot = self.robot
+        odometry = encoder_odometry(robot) if self._encoder_odometry else yaw_frame_odometry(robot.model)
+        position, orientation, linear, angular = odometry
         self._odom_pub.publish(self._odom_packer.pack, secs, nsecs, position, orientation, linear, angular)
         if self._tf is not None:
             self._tf.publish(self._tf_packer.pack, secs, nsecs, position, orientation)
