@@ -1,10 +1,10 @@
 """The plugin reference (doc/*.md) stays true to the code: every plugin in the registry tables has a section, each
-section's XML example is read without error by the plugin's reader, and every tag or sensor element a section's
-tables document is one the reader reads.
+section's XML example is read without error by the plugin's reader, every tag or sensor element a section's tables
+document is one the reader reads, and every documented default that is a value (not "the link") is the reader's.
 
 "Reads" is tested from the outside, whatever way a reader looks its tags up: the tag, set to a value no reader
 accepts as it is ("not_a_value_9"), changes what the reader returns (its config, or the error it raises) against the
-example without the tag. A tag the reader ignores leaves the result as it was."""
+example without the tag. A tag the reader ignores leaves the result as it was; a tag set to its default does too."""
 from __future__ import annotations
 
 import re
@@ -34,8 +34,8 @@ class Section(NamedTuple):
     heading: str
     anchor: str
     example: Optional[str]  # the first ```xml block
-    tags: Tuple[str, ...]  # first column of the `| tag |` tables
-    elements: Tuple[str, ...]  # first column of the `| element |` tables, as paths below <sensor>
+    tags: Tuple[Tuple[str, Optional[str]], ...]  # (tag, its documented default as text, None where not literal)
+    elements: Tuple[Tuple[str, Optional[str]], ...]  # (path below <sensor>, default)
 
 
 def _anchor(heading: str) -> str:
@@ -43,10 +43,11 @@ def _anchor(heading: str) -> str:
     return re.sub(r"[^\w\- ]", "", heading.lower()).replace(" ", "-")
 
 
-def _table_column(lines: List[str], kind: str) -> List[List[str]]:
-    """The backticked names of each first cell of the ``kind`` tables, a list a row."""
-    found: List[List[str]] = []
-    inside = False
+def _table_rows(lines: List[str], kind: str) -> List[Tuple[List[str], str]]:
+    """Of each row of the ``kind`` tables: the backticked names of its first cell, and its default cell (the third:
+    | name | type | default | meaning |)."""
+    found: List[Tuple[List[str], str]] = []
+    inside, current = False, ""
     for line in lines:
         cells = [cell.strip() for cell in line.strip().strip("|").split("|")] if line.startswith("|") else []
         if not cells:
@@ -54,8 +55,31 @@ def _table_column(lines: List[str], kind: str) -> List[List[str]]:
         elif cells[0] in (TAG_TABLE, ELEMENT_TABLE) and not inside:
             inside, current = True, cells[0]
         elif inside and current == kind and not set(cells[0]) <= set("-: "):
-            found.append(re.findall(r"`([^`]+)`", cells[0]))
+            found.append((re.findall(r"`([^`]+)`", cells[0]), cells[2]))
     return found
+
+
+def _literal(default: str) -> Optional[str]:
+    """A documented default as the tag's text, where it is one a user could write: a number (−, a/b, inf), true or
+    false, "" or one backticked word; None for words ("the link", "required") and references to other tags."""
+    text = default.replace("−", "-").strip()
+    if re.fullmatch(r"-?\d+(\.\d+)?(e-?\d+)?|-?inf|true|false", text):
+        return text
+    if re.fullmatch(r"\d+/\d+", text):
+        numerator, denominator = text.split("/")
+        return repr(int(numerator) / int(denominator))
+    if text == '""':
+        return ""
+    word = re.fullmatch(r"`([^`<>]+)`", text)
+    return word.group(1) if word else None
+
+
+def _with_defaults(names: List[str], default: str) -> List[Tuple[str, Optional[str]]]:
+    """Pairs a row's names with its defaults: one default for all, or one each ("0.12, 3.5")."""
+    defaults = [part.strip() for part in default.split(", ")]
+    if len(defaults) != len(names):
+        defaults = [default] * len(names)
+    return [(name, _literal(value)) for name, value in zip(names, defaults)]
 
 
 def _element_paths(names: List[str]) -> List[str]:
@@ -72,14 +96,21 @@ def sections() -> List[Section]:
         for heading, body in zip(parts[1::2], parts[2::2]):
             example = re.search(r"```xml\n(.*?)```", body, re.S)
             lines = body.splitlines()
-            found.append(
+            tags = [pair for names, default in _table_rows(lines, TAG_TABLE) for pair in _with_defaults(names, default)]
+            elements = [
+                pair
+                for names, default in _table_rows(lines, ELEMENT_TABLE)
+                for pair in _with_defaults(_element_paths(names), default)
+            ]
+            named = {name for name, _ in tags + elements}
+            found.append(  # a default naming another tag ("publishTf" defaults to publishOdomTF) is not literal
                 Section(
                     page.name,
                     heading.strip(),
                     _anchor(heading.strip()),
                     example.group(1) if example else None,
-                    tuple(tag for row in _table_column(lines, TAG_TABLE) for tag in row),
-                    tuple(path for row in _table_column(lines, ELEMENT_TABLE) for path in _element_paths(row)),
+                    tuple((name, None if default in named else default) for name, default in tags),
+                    tuple((name, None if default in named else default) for name, default in elements),
                 )
             )
     return found
@@ -130,10 +161,11 @@ def _without(section: Section, path: str, in_sensor: bool) -> Tuple[Element, Opt
     return plugin, sensor, parent
 
 
-def _probe_changes(section: Section, path: str, in_sensor: bool) -> bool:
+def _changes(section: Section, path: str, in_sensor: bool, value: str = PROBE) -> bool:
+    """Whether giving ``path`` the text ``value`` changes what the reader makes of the example without it."""
     plugin, sensor, parent = _without(section, path, in_sensor)
     before = _read(plugin, sensor)
-    SubElement(parent, path.split("/")[-1]).text = PROBE
+    SubElement(parent, path.split("/")[-1]).text = value
     return _read(plugin, sensor) != before
 
 
@@ -152,7 +184,7 @@ def test_the_example_reads_cleanly(section: Section) -> None:
 @pytest.mark.parametrize("section", PLUGIN_SECTIONS, ids=[s.anchor for s in PLUGIN_SECTIONS])
 def test_every_documented_tag_is_read(section: Section) -> None:
     assert section.tags, f"{section.page} '{section.heading}' documents no tags"
-    ignored = [tag for tag in section.tags if not _probe_changes(section, tag, in_sensor=False)]
+    ignored = [tag for tag, _ in section.tags if not _changes(section, tag, in_sensor=False)]
     assert not ignored, f"{section.page} '{section.heading}': the reader ignores tags {ignored}"
 
 
@@ -161,15 +193,30 @@ def test_every_documented_sensor_element_is_read(section: Section) -> None:
     if not section.elements:
         return
     assert _example_plugin(section)[1] is not None, f"'{section.heading}' documents sensor elements of no sensor"
-    ignored = [path for path in section.elements if not _probe_changes(section, path, in_sensor=True)]
+    ignored = [path for path, _ in section.elements if not _changes(section, path, in_sensor=True)]
     assert not ignored, f"{section.page} '{section.heading}': the reader ignores elements {ignored}"
+
+
+@pytest.mark.parametrize("section", PLUGIN_SECTIONS, ids=[s.anchor for s in PLUGIN_SECTIONS])
+def test_every_documented_default_is_the_readers(section: Section) -> None:
+    """A tag or element given its documented default reads as if it were not there (defaults that are words, such
+    as "the link", are not checked)."""
+    wrong = [
+        f"{name} = {default!r}"
+        for in_sensor, rows in ((False, section.tags), (True, section.elements))
+        for name, default in rows
+        if default is not None and _changes(section, name, in_sensor, default)
+    ]
+    assert not wrong, f"{section.page} '{section.heading}': defaults the reader does not have: {wrong}"
 
 
 def test_an_ignored_tag_is_found() -> None:
     """The probe itself: a tag no reader knows changes nothing; a tag the reader knows changes its result."""
     section = next(s for s in PLUGIN_SECTIONS if "`libgazebo_ros_diff_drive.so`" in s.heading)
-    assert not _probe_changes(section, "noSuchTag", in_sensor=False)
-    assert _probe_changes(section, "commandTopic", in_sensor=False)
+    assert not _changes(section, "noSuchTag", in_sensor=False)
+    assert _changes(section, "commandTopic", in_sensor=False)
+    assert not _changes(section, "commandTopic", in_sensor=False, value="cmd_vel")  # its default
+    assert _changes(section, "commandTopic", in_sensor=False, value="cmd_vel_2")
 
 
 def test_the_readme_index_links_every_section() -> None:
@@ -183,8 +230,9 @@ def test_the_readme_index_links_every_section() -> None:
 
 
 def test_tables_found() -> None:
-    """The parser sees the tables (a changed header would otherwise pass every test above vacuously)."""
+    """The parser sees the tables and their literal defaults (a changed header would otherwise pass every test above
+    vacuously)."""
     counts: Dict[str, int] = {}
     for section in PLUGIN_SECTIONS:
-        counts[section.page] = counts.get(section.page, 0) + len(section.tags)
+        counts[section.page] = counts.get(section.page, 0) + sum(default is not None for _, default in section.tags)
     assert all(count > 0 for count in counts.values()) and len(counts) >= 5, counts
