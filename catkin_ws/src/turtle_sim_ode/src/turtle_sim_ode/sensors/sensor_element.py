@@ -160,3 +160,14 @@ def read_ray_grid_plugin(
     if config.rays > max_rays:
         raise ModelError(f"{what}: {config.rays} rays a scan, more than {max_rays}")
     return config
+
+
+def gazebo_ray_tags(params: Dict[str, str], plugin_what: str, topic: str) -> Dict[str, object]:
+    """The tags gazebo_plugins' block laser and range plugins read alike (their Load): topicName (``topic`` where not
+    given), frameName (/world), gaussianNoise (0, >= 0) and robotNamespace."""
+    return {
+        "topic": params.get("topicName") or topic,
+        "frame": params.get("frameName") or "/world",
+        "gaussian_noise": read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
+        "robot_namespace": params.get("robotNamespace") or "",
+    }

@@ -9,8 +9,7 @@ from xml.etree.ElementTree import Element
 
 import numpy as np
 
-from turtle_sim_ode.models.text import read_number
-from turtle_sim_ode.sensors.sensor_element import RayGridConfig, read_ray_grid_plugin
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, gazebo_ray_tags, read_ray_grid_plugin
 
 SENSOR_PLUGINS = {"libgazebo_ros_block_laser.so": ("ray", "gpu_ray")}
 MAX_RAYS = 100_000
@@ -27,12 +26,7 @@ class BlockLaserConfig(RayGridConfig):
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> BlockLaserConfig:
     def tags(params: Dict[str, str], plugin_what: str) -> Dict[str, object]:
-        return {
-            "topic": params.get("topicName") or "/world",
-            "frame": params.get("frameName") or "/world",
-            "gaussian_noise": read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
-            "robot_namespace": params.get("robotNamespace") or "",
-        }
+        return gazebo_ray_tags(params, plugin_what, "/world")
 
     return read_ray_grid_plugin(BlockLaserConfig, link, sensor, plugin, "block_laser", MAX_RAYS, tags)
 

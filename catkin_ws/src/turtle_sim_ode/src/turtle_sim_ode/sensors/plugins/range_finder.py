@@ -9,7 +9,7 @@ from typing import Dict, List
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, read_number
-from turtle_sim_ode.sensors.sensor_element import RayGridConfig, read_ray_grid_plugin, sensor_what
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, gazebo_ray_tags, read_ray_grid_plugin, sensor_what
 
 SENSOR_PLUGINS = {"libgazebo_ros_range.so": ("ray", "gpu_ray")}
 MAX_RAYS = 10_000
@@ -30,13 +30,10 @@ class RangeConfig(RayGridConfig):
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> RangeConfig:
     def tags(params: Dict[str, str], plugin_what: str) -> Dict[str, object]:
         return {
-            "topic": params.get("topicName") or "/range",
-            "frame": params.get("frameName") or "/world",
+            **gazebo_ray_tags(params, plugin_what, "/range"),
             "radiation": ULTRASOUND if (params.get("radiation") or "ultrasound") == "ultrasound" else INFRARED,
             "field_of_view": read_number(params.get("fov"), f"{plugin_what} <fov>", 0.05),
-            "gaussian_noise": read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
             "plugin_rate": read_number(params.get("updateRate"), f"{plugin_what} <updateRate>", 0.0, 0.0),
-            "robot_namespace": params.get("robotNamespace") or "",
         }
 
     config = read_ray_grid_plugin(RangeConfig, link, sensor, plugin, "range", MAX_RAYS, tags)
