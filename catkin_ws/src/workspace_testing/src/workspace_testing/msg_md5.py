@@ -69,6 +69,17 @@ def source_md5sums(
         return found
 
 
+def read_md5sums(path: Path) -> Dict[str, str]:
+    """{"msg/Name": md5sum} from a text file of ``msg/Name md5sum`` lines (``#`` starts a comment)."""
+    found = {}
+    for line in path.read_text().splitlines():
+        words = line.split("#", 1)[0].split()
+        if words:
+            type_key, md5sum = words
+            found[type_key] = md5sum
+    return found
+
+
 def md5_tests(
     package_root: Path,
     package: str,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, NamedTuple, Optional, Sequence, Tuple
+from typing import Callable, Dict, NamedTuple, Optional, Sequence, Tuple, Type, TypeVar
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
@@ -137,3 +137,37 @@ def ray_grid(sensor: Element, what: str) -> Dict[str, object]:
     if grid["noise_stddev"] < 0:  # type: ignore[operator]
         raise ModelError(f"{what} <noise><stddev> must be >= 0, got {grid['noise_stddev']}")
     return grid
+
+
+GridConfig = TypeVar("GridConfig", bound=RayGridConfig)
+
+
+def read_ray_grid_plugin(
+    config_type: Type[GridConfig],
+    link: str,
+    sensor: Element,
+    plugin: Element,
+    default_name: str,
+    max_rays: int,
+    read_tags: Callable[[Dict[str, str], str], Dict[str, object]],
+) -> GridConfig:
+    """What the multi-beam plugins' readers share: the sensor's grid (``ray_grid``) and the plugin's tags
+    (``read_tags(params, plugin_what)``: the config's remaining fields) as a ``config_type``; ModelError beyond
+    ``max_rays`` rays a scan."""
+    name, what, params, plugin_what = sensor_plugin(sensor, plugin, default_name)
+    grid = ray_grid(sensor, what)
+    config = config_type(link=link, name=name, **grid, **read_tags(params, plugin_what))  # type: ignore[arg-type]
+    if config.rays > max_rays:
+        raise ModelError(f"{what}: {config.rays} rays a scan, more than {max_rays}")
+    return config
+
+
+def gazebo_ray_tags(params: Dict[str, str], plugin_what: str, topic: str) -> Dict[str, object]:
+    """The tags gazebo_plugins' block laser and range plugins read alike (their Load): topicName (``topic`` where not
+    given), frameName (/world), gaussianNoise (0, >= 0) and robotNamespace."""
+    return {
+        "topic": params.get("topicName") or topic,
+        "frame": params.get("frameName") or "/world",
+        "gaussian_noise": read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
+        "robot_namespace": params.get("robotNamespace") or "",
+    }

@@ -4,13 +4,12 @@ defaults, and PutLaserData's points; the rays are sensors.lidar's (one ray per s
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, List, Tuple
+from typing import Callable, Dict, List, Tuple
 from xml.etree.ElementTree import Element
 
 import numpy as np
 
-from turtle_sim_ode.models.text import ModelError, read_number
-from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid, sensor_plugin
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, gazebo_ray_tags, read_ray_grid_plugin
 
 SENSOR_PLUGINS = {"libgazebo_ros_block_laser.so": ("ray", "gpu_ray")}
 MAX_RAYS = 100_000
@@ -26,19 +25,10 @@ class BlockLaserConfig(RayGridConfig):
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> BlockLaserConfig:
-    name, what, params, plugin_what = sensor_plugin(sensor, plugin, "block_laser")
-    config = BlockLaserConfig(
-        link=link,
-        name=name,
-        **ray_grid(sensor, what),  # type: ignore[arg-type]
-        topic=params.get("topicName") or "/world",
-        frame=params.get("frameName") or "/world",
-        gaussian_noise=read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
-        robot_namespace=params.get("robotNamespace") or "",
-    )
-    if config.rays > MAX_RAYS:
-        raise ModelError(f"{what}: {config.rays} rays, more than {MAX_RAYS}")
-    return config
+    def tags(params: Dict[str, str], plugin_what: str) -> Dict[str, object]:
+        return gazebo_ray_tags(params, plugin_what, "/world")
+
+    return read_ray_grid_plugin(BlockLaserConfig, link, sensor, plugin, "block_laser", MAX_RAYS, tags)
 
 
 def _half_step_angles(count: int, low: float, high: float) -> np.ndarray:

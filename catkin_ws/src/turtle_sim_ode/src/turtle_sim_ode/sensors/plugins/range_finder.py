@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import List
+from typing import Dict, List
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, read_number
-from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid, sensor_plugin
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, gazebo_ray_tags, read_ray_grid_plugin, sensor_what
 
 SENSOR_PLUGINS = {"libgazebo_ros_range.so": ("ray", "gpu_ray")}
 MAX_RAYS = 10_000
@@ -28,23 +28,17 @@ class RangeConfig(RayGridConfig):
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> RangeConfig:
-    name, what, params, plugin_what = sensor_plugin(sensor, plugin, "range")
-    config = RangeConfig(
-        link=link,
-        name=name,
-        **ray_grid(sensor, what),  # type: ignore[arg-type]
-        topic=params.get("topicName") or "/range",
-        frame=params.get("frameName") or "/world",
-        radiation=ULTRASOUND if (params.get("radiation") or "ultrasound") == "ultrasound" else INFRARED,
-        field_of_view=read_number(params.get("fov"), f"{plugin_what} <fov>", 0.05),
-        gaussian_noise=read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
-        plugin_rate=read_number(params.get("updateRate"), f"{plugin_what} <updateRate>", 0.0, 0.0),
-        robot_namespace=params.get("robotNamespace") or "",
-    )
-    if config.rays > MAX_RAYS:
-        raise ModelError(f"{what}: {config.rays} rays, more than {MAX_RAYS}")
+    def tags(params: Dict[str, str], plugin_what: str) -> Dict[str, object]:
+        return {
+            **gazebo_ray_tags(params, plugin_what, "/range"),
+            "radiation": ULTRASOUND if (params.get("radiation") or "ultrasound") == "ultrasound" else INFRARED,
+            "field_of_view": read_number(params.get("fov"), f"{plugin_what} <fov>", 0.05),
+            "plugin_rate": read_number(params.get("updateRate"), f"{plugin_what} <updateRate>", 0.0, 0.0),
+        }
+
+    config = read_ray_grid_plugin(RangeConfig, link, sensor, plugin, "range", MAX_RAYS, tags)
     if not math.isfinite(config.range_max):
-        raise ModelError(f"{what}: <range><max> must be finite")
+        raise ModelError(f"{sensor_what(sensor, 'range')[1]}: <range><max> must be finite")
     return config
 
 

@@ -6,13 +6,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import List, Tuple
+from typing import Dict, List, Tuple
 
 import numpy as np
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, read_number
-from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid, sensor_plugin
+from turtle_sim_ode.sensors.sensor_element import RayGridConfig, read_ray_grid_plugin
 
 SENSOR_PLUGINS = {
     "libgazebo_ros_velodyne_laser.so": ("ray",),
@@ -45,34 +45,28 @@ class VelodyneConfig(RayGridConfig):
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> VelodyneConfig:
-    name, what, params, plugin_what = sensor_plugin(sensor, plugin, "velodyne")
-    grid = ray_grid(sensor, what)
+    def tags(params: Dict[str, str], plugin_what: str) -> Dict[str, object]:
+        def number(key: str, default: float, minimum: float = -math.inf) -> float:
+            text = params.get(key)
+            if text is not None and text.strip().lower() in ("inf", "infinity"):
+                return math.inf
+            return read_number(text, f"{plugin_what} <{key}>", default, minimum)
 
-    def tag(key: str, default: float, minimum: float = -math.inf) -> float:
-        text = params.get(key)
-        if text is not None and text.strip().lower() in ("inf", "infinity"):
-            return math.inf
-        return read_number(text, f"{plugin_what} <{key}>", default, minimum)
+        organize = (params.get("organize_cloud") or "false").strip().lower()
+        if organize not in ("true", "false", "1", "0"):
+            raise ModelError(f"{plugin_what} <organize_cloud> must be true or false, got '{organize}'")
+        return {
+            "topic": (params.get("topicName") or "/points").strip(),
+            "frame": (params.get("frameName") or "/world").strip(),
+            "min_range": number("min_range", 0.0),
+            "max_range": number("max_range", math.inf),
+            "min_intensity": number("min_intensity", -math.inf),
+            "gaussian_noise": number("gaussianNoise", 0.0, minimum=0.0),
+            "organize_cloud": organize in ("true", "1"),
+            "robot_namespace": (params.get("robotNamespace") or "").strip(),
+        }
 
-    organize = (params.get("organize_cloud") or "false").strip().lower()
-    if organize not in ("true", "false", "1", "0"):
-        raise ModelError(f"{plugin_what} <organize_cloud> must be true or false, got '{organize}'")
-    config = VelodyneConfig(
-        link=link,
-        name=name,
-        **grid,  # type: ignore[arg-type]
-        topic=(params.get("topicName") or "/points").strip(),
-        frame=(params.get("frameName") or "/world").strip(),
-        min_range=tag("min_range", 0.0),
-        max_range=tag("max_range", math.inf),
-        min_intensity=tag("min_intensity", -math.inf),
-        gaussian_noise=tag("gaussianNoise", 0.0, minimum=0.0),
-        organize_cloud=organize in ("true", "1"),
-        robot_namespace=(params.get("robotNamespace") or "").strip(),
-    )
-    if config.rays > MAX_RAYS:
-        raise ModelError(f"{what}: {config.rays} rays a scan, more than {MAX_RAYS}")
-    return config
+    return read_ray_grid_plugin(VelodyneConfig, link, sensor, plugin, "velodyne", MAX_RAYS, tags)
 
 
 class VelodyneCloud:
