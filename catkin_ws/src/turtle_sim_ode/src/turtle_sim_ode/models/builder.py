@@ -8,7 +8,7 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 import ode
 
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, Mesh, RobotModel, Sphere
+from turtle_sim_ode.models.urdf import WORLD_LINK, MAX_LENGTH, Box, Cylinder, Geometry, Joint, Mesh, RobotModel, Sphere
 from turtle_sim_ode.models.transforms import (  # noqa: F401 (the names other modules import from here)
     Matrix3,
     Quat,
@@ -569,7 +569,8 @@ def build_model(
         for joint in robot.joints.values():
             if joint.type in ("fixed", "floating"):
                 continue
-            child, parent = bodies[joint.child], bodies[owner[joint.parent]]
+            child = bodies[joint.child]
+            parent = None if joint.parent == WORLD_LINK else bodies[owner[joint.parent]]  # None: ODE's world
             anchor, rotation = compose(world_of[joint.child], pose_transform(joint.frame))
             axis = quat_rotate(rotation, joint.axis)
             if joint.type == "prismatic":
@@ -595,7 +596,8 @@ def build_model(
                 # Gazebo's joint friction: a zero-velocity motor limited to the friction force.
                 ode_joint.setParam(oc.PARAM_VEL, 0.0)
                 ode_joint.setParam(oc.PARAM_FMAX, joint.dynamics.friction)
-            physics.exclude_collision(child, parent)
+            if parent is not None:
+                physics.exclude_collision(child, parent)
             handle = JointHandle(joint.name, joint.type, ode_joint)
             joints[joint.name] = handle
             if joint.dynamics.damping > 0:

@@ -54,6 +54,7 @@ from turtle_sim_ode.models.urdf import (
     SensorElement,
     Sphere,
     Vec3,
+    WORLD_LINK,
     Visual,
     _bounded,
     _check_mass,
@@ -196,6 +197,7 @@ class World:
 
 # --- small helpers ------------------------------------------------------------------
 _rpy = rpy_of  # the name world.simulation imports
+_IDENTITY: Transform = ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
 
 
 def _as_pose(transform: Transform) -> Pose:
@@ -282,7 +284,7 @@ def _parse_geometry(
     element: Optional[Element], what: str, static: bool, warnings: List[str]
 ) -> Tuple[Geometry, Transform]:
     """The shape and where it sits in the collision frame."""
-    identity: Transform = ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
+    identity = _IDENTITY
     shape = None if element is None else next(iter(element), None)
     if shape is None:
         raise ModelError(f"{what}: missing <geometry> shape")
@@ -429,13 +431,10 @@ def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Trans
     parent, child = child_text(element, "parent"), child_text(element, "child")
     if parent is None or child is None:
         raise ModelError(f"{what}: needs <parent> and <child>")
-    if parent == "world":
-        raise ModelError(
-            f"{what}: joints to the world are not supported; make the model "
-            f"<static> instead of fixing it to the world"
-        )
+    if parent == WORLD_LINK and joint_type == "fixed":
+        raise ModelError(f"{what}: fixed joints to the world are not supported; make the model <static> instead")
     for role, link in (("parent", parent), ("child", child)):
-        if link not in link_poses:
+        if link not in link_poses and not (role == "parent" and link == WORLD_LINK):
             raise ModelError(f"{what}: {role} link '{link}' does not exist")
     frame = _pose(element, what)
     joint_in_model = compose(link_poses[child], pose_transform(frame))
@@ -468,7 +467,7 @@ def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Trans
         )
         if _float(axis_element, "dynamics/spring_stiffness", what, 0.0) != 0.0:
             warnings.append(f"{what}: <spring_stiffness> is not supported, ignored")
-    origin = _as_pose(compose(inverse(link_poses[parent]), link_poses[child]))
+    origin = _as_pose(compose(inverse(link_poses.get(parent, _IDENTITY)), link_poses[child]))
     return Joint(name, joint_type, parent, child, origin, axis, limits, dynamics, frame)
 
 
@@ -497,7 +496,9 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
         if joint.name in model.joints:
             raise ModelError(f"{what}: duplicate joint name '{joint.name}'")
         model.joints[joint.name] = joint
-    children = {joint.child for joint in model.joints.values()}
+    # A joint to the world (a lift's, an arm's base) holds the root link: the tree is the other joints.
+    in_tree = {key: joint for key, joint in model.joints.items() if joint.parent != WORLD_LINK}
+    children = {joint.child for joint in in_tree.values()}
     roots = [link for link in model.links if link not in children]
     for free in roots[1:]:  # SDF links without a joint are free bodies
         model.joints[f"__free_{free}"] = Joint(
@@ -507,7 +508,9 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
             free,
             _as_pose(compose(inverse(link_poses[roots[0]]), link_poses[free])),
         )
-    model.root = _find_root(model.links, model.joints)
+    model.root = _find_root(model.links, {k: j for k, j in model.joints.items() if j.parent != WORLD_LINK})
+    if any(joint.child != model.root for joint in model.joints.values() if joint.parent == WORLD_LINK):
+        raise ModelError(f"{what}: a joint to the world must hold the root link '{model.root}'")
     model.root_pose = _as_pose(link_poses[model.root])
     model.plugins.extend(_plugin(p, what) for p in element.findall("plugin"))
     if _bool(element, "self_collide", what, False):

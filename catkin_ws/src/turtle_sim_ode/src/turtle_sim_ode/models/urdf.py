@@ -96,6 +96,10 @@ Geometry = Union[Box, Cylinder, Sphere, Mesh]
 VISUAL_SHAPES = ("box", "cylinder", "sphere", "mesh")
 
 
+# The parent link name of a joint that holds a model's root link to the world (SDF's <parent>world</parent>).
+WORLD_LINK = "world"
+
+
 @dataclass(frozen=True)
 class Collision:
     name: str

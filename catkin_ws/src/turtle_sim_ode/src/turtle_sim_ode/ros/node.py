@@ -328,12 +328,12 @@ def load_world(node: SimulatorNode, world_name: str) -> None:
         warnings = node.sim.load_world(world)
         # The node's real_time_factor parameter (the launch argument) wins over the world's pacing.
         node.sim.max_update_rate = node.settings.real_time_factor / node.sim.physics.time_step
-        for model in world.models:
-            node.add_interface(model.name, "")
+        for name in list(node.sim.models):  # the included and plugin-made models' plugins too
+            node.add_interface(name, "")
         node._restart_time()  # a world's <state> may start sim time elsewhere than 0
     if warnings:  # one line, at most MAX_SHOWN_WARNINGS of them
         rospy.logwarn("world %s: %s", path, "; ".join(summarise(warnings)))
-    rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, [m.name for m in world.models])
+    rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, list(node.sim.models))
 
 
 def main(overrides: Optional[Dict[str, object]] = None, notes: Sequence[str] = (), claim_sim_time: bool = False) -> int:

@@ -21,6 +21,7 @@ from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
 from turtle_sim_ode.world.lights import LightControl
 from turtle_sim_ode.world.plugins import DriveRobot, ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
+from turtle_sim_ode.world.rubble import RUBBLE, rubble
 from turtle_sim_ode.world.world_state import apply_world_state
 from turtle_sim_ode.world.values import WorldError, update_rate, vector
 
@@ -236,6 +237,9 @@ class Simulation(WorldControl, LightControl):
                     f"model '{entry.name}': {warning}"
                     for warning in self.spawn_model(entry.name, entry.model, entry.spawn_pose, base=entry.base)
                 )
+            for plugin in (plugin for plugin in world.plugins if plugin.filename == RUBBLE):
+                for name, piece, pose in rubble(plugin):
+                    warnings.extend(f"model '{name}': {warning}" for warning in self.spawn_model(name, piece, pose))
         except Exception:
             for name in list(self.models):
                 self.delete(name)
@@ -253,7 +257,9 @@ class Simulation(WorldControl, LightControl):
             named = f" (model '{include.name}')" if include.name else ""
             warnings.append(f"cannot resolve {include.uri}{named}: not spawned")
         warnings.extend(
-            f"world plugin {plugin.filename} ({plugin.name}) is not supported: ignored" for plugin in world.plugins
+            f"world plugin {plugin.filename} ({plugin.name}) is not supported: ignored"
+            for plugin in world.plugins
+            if plugin.filename != RUBBLE
         )
         return warnings
 
