@@ -93,6 +93,7 @@ class Simulation(WorldControl, LightControl):
         self.sky_colour: Optional[Tuple[float, float, float]] = None
         # The loaded world's <spherical_coordinates> (latitude_deg, longitude_deg, elevation, heading_deg); GPS plugins.
         self.spherical_coordinates: Optional[Tuple[float, float, float, float]] = None
+        self.world_name = "default"  # the loaded world's (Gazebo's scoped sensor names begin with it)
         # What the cameras see of the models (their visuals), whose meshes are read through ``resources``.
         self.scene = Scene(self.models)
 
@@ -223,6 +224,7 @@ class Simulation(WorldControl, LightControl):
         self.lights, self.sky_colour = {light.name: light for light in lights}, world.background
         self.had_sun = self.light_direction is not None
         self.spherical_coordinates = world.spherical_coordinates
+        self.world_name = world.name
         self.max_update_rate = rate
         warnings = list(world.warnings)
         includes = world.includes
