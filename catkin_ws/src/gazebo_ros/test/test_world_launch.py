@@ -7,7 +7,6 @@ elevator_world.launch rides to floor 1 when asked on /elevator (gazebo_ros_eleva
 the car at floor * floor_height within the lift's 0.15 m, the door then opened to 1 m within 0.05 m)."""
 import math
 import os
-import threading
 import unittest
 
 import rospkg
@@ -15,37 +14,13 @@ import rospy
 import rostest
 from gazebo_msgs.srv import GetJointProperties, GetModelState, GetWorldProperties, SpawnModel
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist
-from rosgraph_msgs.msg import Clock
 from std_msgs.msg import String
+from workspace_testing.sim_clock import SimClock
 
 
 def service(name, kind, timeout):
     rospy.wait_for_service("/gazebo/" + name, timeout=timeout)
     return rospy.ServiceProxy("/gazebo/" + name, kind)
-
-
-class SimClock:
-    """The latest /clock; waits for a sim time."""
-
-    def __init__(self) -> None:
-        self.now = None
-        self._changed = threading.Condition()
-        rospy.Subscriber("/clock", Clock, self._on_clock, queue_size=10)
-
-    def _on_clock(self, message: Clock) -> None:
-        with self._changed:
-            self.now = message.clock.to_sec()
-            self._changed.notify_all()
-
-    def wait_until(self, sim_time: float, timeout: float) -> bool:
-        with self._changed:
-            return self._changed.wait_for(lambda: self.now is not None and self.now >= sim_time, timeout)
-
-    def wait_for(self, seconds: float, timeout: float) -> bool:
-        with self._changed:
-            self._changed.wait_for(lambda: self.now is not None, timeout)
-            start = self.now
-        return start is not None and self.wait_until(start + seconds, timeout)
 
 
 class WorldLaunch(unittest.TestCase):
