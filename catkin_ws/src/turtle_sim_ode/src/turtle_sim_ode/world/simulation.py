@@ -249,7 +249,7 @@ class Simulation(WorldControl, LightControl):
             self.physics.set_params(old_params)
             self.max_update_rate = old_rate
             self.lights, self.sky_colour, self.had_sun = {}, None, False
-            self.spherical_coordinates = None
+            self.spherical_coordinates, self.world_name = None, "default"
             raise
         if world.state is not None:
             warnings.extend(apply_world_state(world.state, self.physics, self.models, self.lights))
