@@ -2,7 +2,7 @@
 worlds/shapes.world, mud.world, willowgarage.world, rubble.world and gazebo_ros_pkgs' gazebo_plugins/test/
 test_worlds/elevator.world (model names and poses), plugins/RubblePlugin.cc (RubblePlugin::Load) and
 plugins/ElevatorPlugin.cc (MoveToFloor's five states, DoorController and LiftController's PIDs and tolerances,
-gazebo::common::PID::Update); SDF joints to the world (<parent>world</parent>) as the elevator's lift uses one."""
+gazebo::common::PID::Update) and gazebo_ros_elevator.cpp (OnElevator: std::stoi of the message); SDF joints to the world (<parent>world</parent>) as the elevator's lift uses one."""
 from __future__ import annotations
 
 import math
@@ -17,6 +17,7 @@ from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.sdf import parse_sdf_model, parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.ros.plugins.elevator import floor_number
 from turtle_sim_ode.world.plugins.elevator import Elevator, GazeboPid
 from turtle_sim_ode.world.rubble import BOARD_LENGTH, BOARD_SECTION, CINDER_BLOCK, RUBBLE, rubble
 from turtle_sim_ode.world.simulation import Simulation
@@ -225,3 +226,20 @@ def test_every_piece_is_a_board_or_a_cinder_block_inside_the_region(seed, low, e
 def test_bad_rubble_tags_are_refused_by_name(tags, message) -> None:
     with pytest.raises(ModelError, match=message):
         rubble(plugin(**tags))
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    floor=st.integers(-(2**31), 2**31 - 1),
+    blanks=st.sampled_from(["", " ", "\t "]),
+    tail=st.sampled_from(["", "x", " 3"]),
+)
+def test_floor_numbers_are_read_as_std_stoi_reads_them(floor: int, blanks: str, tail: str) -> None:
+    """GazeboRosElevator::OnElevator hands the message to std::stoi: blanks, a sign, digits; the rest ignored."""
+    assert floor_number(f"{blanks}{floor}{tail}") == floor
+    assert floor_number(f"+{floor}") == (floor if floor >= 0 else None)
+
+
+@pytest.mark.parametrize("text", ["", "abc", "-", "one", str(2**31), str(-(2**31) - 1)])
+def test_text_std_stoi_refuses_is_no_floor(text: str) -> None:
+    assert floor_number(text) is None

@@ -5,7 +5,7 @@ Text without a leading number is warned of (upstream's std::stoi throws in the c
 from __future__ import annotations
 
 import re
-from typing import List
+from typing import List, Optional
 
 import rospy
 from std_msgs.msg import String
@@ -20,6 +20,16 @@ from turtle_sim_ode.world.plugins.elevator import Elevator, ElevatorConfig
 _LEADING_INTEGER = re.compile(r"\s*([+-]?\d+)")
 # std::stoi's range: an int of 32 bits.
 _INT_RANGE = (-(2**31), 2**31 - 1)
+
+
+def floor_number(text: str) -> Optional[int]:
+    """std::stoi's reading of ``text``: leading blanks, a sign, digits (what follows them ignored); None where
+    std::stoi would throw (no digits, or beyond a 32-bit int)."""
+    match = _LEADING_INTEGER.match(text)
+    if match is None:
+        return None
+    floor = int(match.group(1))
+    return floor if _INT_RANGE[0] <= floor <= _INT_RANGE[1] else None
 
 
 class ElevatorInterface(Periodic):
@@ -43,9 +53,8 @@ class ElevatorInterface(Periodic):
         )
 
     def _on_floor(self, message: String) -> None:
-        match = _LEADING_INTEGER.match(message.data)
-        floor = int(match.group(1)) if match else None
-        if floor is None or not _INT_RANGE[0] <= floor <= _INT_RANGE[1]:
+        floor = floor_number(message.data)
+        if floor is None:
             logwarn_every(
                 5.0,
                 self._name + "/elevator",
