@@ -10,7 +10,6 @@ import math
 import os
 import shlex
 import sys
-import threading
 import time
 import unittest
 
@@ -19,26 +18,8 @@ import rostest
 from gazebo_msgs.msg import ModelStates
 from gazebo_msgs.srv import GetModelProperties, GetModelState
 from geometry_msgs.msg import Twist
-from rosgraph_msgs.msg import Clock
 from workspace_testing.processes import LoggedProcess
-
-
-class SimClock:
-    """The latest /clock, and a way to wait for a sim time (the test node may start before /use_sim_time is set)."""
-
-    def __init__(self) -> None:
-        self.now = None
-        self._changed = threading.Condition()
-        self._subscriber = rospy.Subscriber("/clock", Clock, self._on_clock, queue_size=10)
-
-    def _on_clock(self, message: Clock) -> None:
-        with self._changed:
-            self.now = message.clock.to_sec()
-            self._changed.notify_all()
-
-    def wait_until(self, sim_time: float, timeout: float) -> bool:
-        with self._changed:
-            return self._changed.wait_for(lambda: self.now is not None and self.now >= sim_time, timeout)
+from workspace_testing.sim_clock import SimClock
 
 
 class GazeboPackageLaunch(unittest.TestCase):

@@ -10,6 +10,7 @@ from collections import defaultdict
 
 import rospy
 import rostest
+from gazebo_msgs.msg import PerformanceMetrics
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Image, PointCloud2
 
@@ -82,6 +83,22 @@ class GzserverCamerasTest(unittest.TestCase):
         self.assertGreaterEqual(len(window[0]), 5)
         self.assertEqual(window[0], window[1])
         self.assertEqual(window[0], window[2])
+
+    def test_performance_metrics_name_the_cameras(self) -> None:
+        """/gazebo/performance_metrics as gazebo_ros republishes Gazebo 11's (gazebo_ros_api_plugin.cpp,
+        onPerformanceMetrics): the real-time factor, and per sensor its scoped name (world::model::link::sensor),
+        its update rate in sim time (<update_rate> 10), and, cameras both, a frame rate (fps, not gazebo_ros's -1)."""
+        metrics = rospy.wait_for_message("/gazebo/performance_metrics", PerformanceMetrics, timeout=30)
+        self.assertGreater(metrics.real_time_factor, 0.0)
+        sensors = {sensor.name: sensor for sensor in metrics.sensors}
+        self.assertEqual(
+            sorted(sensors),
+            ["cameras::depth_camera_post::link::depth_camera", "cameras::grey_camera_post::link::grey_camera"],
+        )
+        for sensor in sensors.values():
+            self.assertEqual(sensor.sim_update_rate, 10.0)
+            self.assertAlmostEqual(sensor.real_update_rate, 10.0 * metrics.real_time_factor, places=6)
+            self.assertGreater(sensor.fps, 0.0)
 
 
 if __name__ == "__main__":

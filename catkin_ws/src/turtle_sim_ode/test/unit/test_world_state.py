@@ -61,3 +61,42 @@ def test_reset_world_returns_to_the_world_files_poses(loaded) -> None:
     sim.reset_world()
     assert sim.get_model_state("crate")[0] == pytest.approx((0, 0, 0.2), abs=1e-9)
     assert sim.get_model_state("wall")[0] == pytest.approx((0, 3, 0.5), abs=1e-9)
+
+
+NESTED = """<sdf version="1.6"><world name="w">
+  <include><uri>model://ground_plane</uri></include>
+  <model name="cart"><pose>0 0 0.5 0 0 0</pose>
+    <link name="body"><inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia>
+      </inertial></link>
+    <model name="pod"><pose>1 0 0 0 0 0</pose>
+      <link name="link"><inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia>
+        </inertial></link>
+      <model name="probe"><link name="tip"><inertial><mass>1</mass>
+        <inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial></link></model>
+    </model>
+  </model>
+  <state world_name="w"><sim_time>3 0</sim_time>
+    <model name="cart"><pose>0 0 2 0 0 0</pose>
+      <link name="body"><pose>0 0 2 0 0 0</pose><velocity>0 0 0 0 0 0</velocity></link>
+      <model name="pod"><pose>3 4 2 0 0 0</pose>
+        <link name="link"><pose>3 4 2 0 0 1.5708</pose><velocity>0.5 0 0 0 0 0</velocity></link>
+        <model name="probe"><pose>5 5 5 0 0 0</pose>
+          <link name="tip"><pose>5 5 5 0 0 0</pose><velocity>0 0 1 0 0 0</velocity></link></model>
+      </model>
+    </model>
+  </state>
+</world></sdf>"""
+
+
+def test_nested_models_states_are_applied_to_their_scoped_links() -> None:
+    """Model::SetState sets each nested model's state (its links' poses and velocities) after the model's own: the
+    flattened model's links are named pod::link, pod::probe::tip (models.nested)."""
+    sim = Simulation()
+    warnings = sim.load_world(parse_sdf_world(NESTED))
+    assert not [w for w in warnings if "nested" in w], warnings
+    position, quaternion, linear, _ = sim.get_link_state("cart::pod::link")
+    assert position == pytest.approx((3, 4, 2), abs=1e-9) and yaw_of(quaternion) == pytest.approx(1.5708)
+    assert linear == pytest.approx((0.5, 0, 0), abs=1e-9)
+    position, _, linear, _ = sim.get_link_state("cart::pod::probe::tip")
+    assert position == pytest.approx((5, 5, 5), abs=1e-9) and linear == pytest.approx((0, 0, 1), abs=1e-9)
+    assert sim.get_link_state("cart::body")[0] == pytest.approx((0, 0, 2), abs=1e-9)

@@ -54,6 +54,7 @@ from turtle_sim_ode.models.urdf import (
     SensorElement,
     Sphere,
     Vec3,
+    WORLD_LINK,
     Visual,
     _bounded,
     _check_mass,
@@ -153,6 +154,8 @@ class WorldModel:
     model: RobotModel
     # The folder of the file the model came from (an <include>d model's), for its relative mesh names.
     base: Optional[str] = None
+    # Its place among the world's <model>s and <include>s: Gazebo loads them in that order.
+    index: int = field(default=0, compare=False)
 
     @property
     def spawn_pose(self) -> Tuple[float, float, float, float, float, float]:
@@ -168,6 +171,7 @@ class Include:
     name: Optional[str] = None
     pose: Pose = Pose()
     static: Optional[bool] = None
+    index: int = field(default=0, compare=False)  # as WorldModel's
 
 
 @dataclass
@@ -179,7 +183,7 @@ class World:
     models: List[WorldModel] = field(default_factory=list)
     includes: List[Include] = field(default_factory=list)
     plugins: List[GazeboPlugin] = field(default_factory=list)
-    # model://ground_plane (or an inline "ground_plane" model): the physics ground at z=0.
+    # model://ground_plane (or an inline "ground_plane" model); without one the world has no ground, as in Gazebo.
     ground_plane: bool = False
     sun: bool = False
     # The world's <light>s in order (model://sun is models.lights.SUN); <scene><background> (None: Gazebo's).
@@ -193,6 +197,7 @@ class World:
 
 # --- small helpers ------------------------------------------------------------------
 _rpy = rpy_of  # the name world.simulation imports
+_IDENTITY: Transform = ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
 
 
 def _as_pose(transform: Transform) -> Pose:
@@ -279,7 +284,7 @@ def _parse_geometry(
     element: Optional[Element], what: str, static: bool, warnings: List[str]
 ) -> Tuple[Geometry, Transform]:
     """The shape and where it sits in the collision frame."""
-    identity: Transform = ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
+    identity = _IDENTITY
     shape = None if element is None else next(iter(element), None)
     if shape is None:
         raise ModelError(f"{what}: missing <geometry> shape")
@@ -373,7 +378,9 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
     for index, collision in enumerate(element.findall("collision")):
         collision_name = collision.get("name") or f"{name}_collision_{index}"
         where = f"{what} collision '{collision_name}'"
-        link.collisions.append(Collision(collision_name, *_placed(collision, where, static, model.warnings)))
+        origin, geometry = _placed(collision, where, static, model.warnings)
+        plane = collision.find("geometry/plane") is not None
+        link.collisions.append(Collision(collision_name, origin, geometry, plane))
         values = _parse_surface(collision.find("surface"), where, model.warnings)
         if any(surface.get(key, value) != value for key, value in values.items()):
             model.warnings.append(
@@ -424,13 +431,10 @@ def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Trans
     parent, child = child_text(element, "parent"), child_text(element, "child")
     if parent is None or child is None:
         raise ModelError(f"{what}: needs <parent> and <child>")
-    if parent == "world":
-        raise ModelError(
-            f"{what}: joints to the world are not supported; make the model "
-            f"<static> instead of fixing it to the world"
-        )
+    if parent == WORLD_LINK and joint_type == "fixed":
+        raise ModelError(f"{what}: fixed joints to the world are not supported; make the model <static> instead")
     for role, link in (("parent", parent), ("child", child)):
-        if link not in link_poses:
+        if link not in link_poses and not (role == "parent" and link == WORLD_LINK):
             raise ModelError(f"{what}: {role} link '{link}' does not exist")
     frame = _pose(element, what)
     joint_in_model = compose(link_poses[child], pose_transform(frame))
@@ -463,7 +467,7 @@ def _parse_joint(element: Element, version: Version, link_poses: Dict[str, Trans
         )
         if _float(axis_element, "dynamics/spring_stiffness", what, 0.0) != 0.0:
             warnings.append(f"{what}: <spring_stiffness> is not supported, ignored")
-    origin = _as_pose(compose(inverse(link_poses[parent]), link_poses[child]))
+    origin = _as_pose(compose(inverse(link_poses.get(parent, _IDENTITY)), link_poses[child]))
     return Joint(name, joint_type, parent, child, origin, axis, limits, dynamics, frame)
 
 
@@ -492,7 +496,9 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
         if joint.name in model.joints:
             raise ModelError(f"{what}: duplicate joint name '{joint.name}'")
         model.joints[joint.name] = joint
-    children = {joint.child for joint in model.joints.values()}
+    # A joint to the world (a lift's, an arm's base) holds the root link: the tree is the other joints.
+    in_tree = {key: joint for key, joint in model.joints.items() if joint.parent != WORLD_LINK}
+    children = {joint.child for joint in in_tree.values()}
     roots = [link for link in model.links if link not in children]
     for free in roots[1:]:  # SDF links without a joint are free bodies
         model.joints[f"__free_{free}"] = Joint(
@@ -502,7 +508,9 @@ def _parse_model(element: Element, version: Version) -> Tuple[RobotModel, Pose]:
             free,
             _as_pose(compose(inverse(link_poses[roots[0]]), link_poses[free])),
         )
-    model.root = _find_root(model.links, model.joints)
+    model.root = _find_root(model.links, {k: j for k, j in model.joints.items() if j.parent != WORLD_LINK})
+    if any(joint.child != model.root for joint in model.joints.values() if joint.parent == WORLD_LINK):
+        raise ModelError(f"{what}: a joint to the world must hold the root link '{model.root}'")
     model.root_pose = _as_pose(link_poses[model.root])
     model.plugins.extend(_plugin(p, what) for p in element.findall("plugin"))
     if _bool(element, "self_collide", what, False):
@@ -628,26 +636,23 @@ def parse_sdf_world(text: str) -> World:
     warnings: List[str] = []
     world = World(element.get("name", "default"), _parse_physics(element, warnings), warnings=warnings)
     names: Set[str] = set()
-    for child in element:
+    for index, child in enumerate(element):
         if child.tag == "model":
             model, pose = _parse_model(child, version)
-            if model.name == GROUND_PLANE_NAME and model.static:
-                world.ground_plane = True
-                continue
+            world.ground_plane = world.ground_plane or model.name == GROUND_PLANE_NAME
             if model.name in names:
                 raise ModelError(f"two models are named '{model.name}'")
             names.add(model.name)
-            world.models.append(WorldModel(model.name, pose, model))
+            world.models.append(WorldModel(model.name, pose, model, index=index))
         elif child.tag == "include":
             uri = child_text(child, "uri")
             if uri is None:
                 raise ModelError("<include> needs a <uri>")
-            if uri == GROUND_PLANE_URI:
-                world.ground_plane = True
-            elif uri == SUN_URI:
+            if uri == SUN_URI:
                 world.sun = True
                 world.lights.append(replace(SUN, name=child_text(child, "name") or SUN.name))
             else:
+                world.ground_plane = world.ground_plane or uri.rstrip("/") == GROUND_PLANE_URI
                 name = child_text(child, "name")
                 if name is not None:
                     if name in names:
@@ -660,6 +665,7 @@ def parse_sdf_world(text: str) -> World:
                         name,
                         _pose(child, f"<include> '{uri}'"),
                         None if static is None else _bool(child, "static", f"<include> '{uri}'", False),
+                        index,
                     )
                 )
         elif child.tag == "plugin":
@@ -677,6 +683,4 @@ def parse_sdf_world(text: str) -> World:
             world.spherical_coordinates = tuple(values)  # type: ignore[assignment]
         elif child.tag not in SILENT_WORLD_TAGS + ("physics", "gravity"):
             warnings.append(f"<world> <{child.tag}> is not supported, ignored")
-    if not world.ground_plane:
-        warnings.append("the world has no ground_plane; the simulator's ground at z=0 is " "there anyway")
     return world

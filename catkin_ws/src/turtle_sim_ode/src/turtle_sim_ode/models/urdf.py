@@ -96,11 +96,17 @@ Geometry = Union[Box, Cylinder, Sphere, Mesh]
 VISUAL_SHAPES = ("box", "cylinder", "sphere", "mesh")
 
 
+# The parent link name of a joint that holds a model's root link to the world (SDF's <parent>world</parent>).
+WORLD_LINK = "world"
+
+
 @dataclass(frozen=True)
 class Collision:
     name: str
     origin: Pose
     geometry: Geometry
+    # An SDF <plane> (``geometry`` is its thin box): Gazebo's ODE collides with the whole plane, the box's top face.
+    plane: bool = False
 
 
 @dataclass(frozen=True)

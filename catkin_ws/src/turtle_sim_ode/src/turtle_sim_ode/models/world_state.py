@@ -59,9 +59,25 @@ def _time(text: Optional[str], what: str) -> float:
     raise ModelError(f"{what} must be 'seconds nanoseconds', got '{text}'")
 
 
+def _link_states(model: Element, what: str, scope: str, into: ModelState, warnings: List[str]) -> None:
+    """The link states of ``model`` and of the models nested in it (Model::SetState sets each nested model's state
+    in turn), under the scoped names the flattened model's links have (models.nested): ``inner::link``."""
+    for link in model.findall("link"):
+        link_what = f"{what} <link name='{link.get('name', '')}'>"
+        into.links[scope + link.get("name", "")] = LinkState(
+            _six(link, "pose", link_what), _six(link, "velocity", link_what)
+        )
+    for nested in model.findall("model"):
+        name = nested.get("name", "")
+        nested_what = f"{what} <model name='{name}'>"
+        if nested.find("link") is None and nested.find("pose") is not None:
+            warnings.append(f"{nested_what}: a nested model's pose without its links' states is not applied")
+        _link_states(nested, nested_what, f"{scope}{name}::", into, warnings)
+
+
 def parse_world_state(world: Element) -> Optional[WorldState]:
-    """The first <state> of a <world>, or None. Nested models' states are named in warnings (not applied);
-    accelerations and wrenches are not state here (they are recomputed every step)."""
+    """The first <state> of a <world>, or None; nested models' link states under their scoped names. Accelerations
+    and wrenches are not state here (they are recomputed every step)."""
     element = world.find("state")
     if element is None:
         return None
@@ -72,13 +88,7 @@ def parse_world_state(world: Element) -> Optional[WorldState]:
         name = model.get("name", "")
         what = f"<state> <model name='{name}'>"
         model_state = ModelState(pose=_six(model, "pose", what))
-        for link in model.findall("link"):
-            link_what = f"{what} <link name='{link.get('name', '')}'>"
-            model_state.links[link.get("name", "")] = LinkState(
-                _six(link, "pose", link_what), _six(link, "velocity", link_what)
-            )
-        if model.findall("model"):
-            state.warnings.append(f"{what}: the states of its nested models are not applied")
+        _link_states(model, what, "", model_state, state.warnings)
         state.models[name] = model_state
     for light in element.findall("light"):
         state.lights[light.get("name", "")] = _six(light, "pose", f"<state> <light name='{light.get('name', '')}'>")

@@ -26,6 +26,7 @@ from turtle_sim_ode.ros.resource_paths import resource_paths
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.gazebo_api import MAX_RAYS_PER_MODEL, GazeboApi, TopicTypes, known_topic_types, summarise
 from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
+from turtle_sim_ode.ros.performance import PerformanceMetricsPublisher
 from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, sim_stamp
 from turtle_sim_ode.ros.plugins import model_interfaces
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
@@ -65,6 +66,7 @@ class SimulatorNode:
         self._tf: Optional[PackedPublisher] = None
         self.interfaces: Dict[str, List[Periodic]] = {}
         self.api: Optional[GazeboApi] = None
+        self.metrics: Optional[PerformanceMetricsPublisher] = None
         self._step_service: Optional[rospy.Service] = None
         # Sim time of the last step and of the next /clock message (a reset of the simulation goes below both).
         self._now = self.sim.sim_time
@@ -91,6 +93,7 @@ class SimulatorNode:
             self.settings.pub_clock_frequency,
             self._on_time_change,
         )
+        self.metrics = PerformanceMetricsPublisher(self.sim)
         if self.settings.step_simulation_service:
             self._step_service = rospy.Service("~step_simulation", StepSimulation, self._on_step_simulation)
 
@@ -177,6 +180,8 @@ class SimulatorNode:
             self._schedule()
         if self.api is not None:
             self.api.publish_states(now)
+        if self.metrics is not None:
+            self.metrics.publish_due(now)
         if now >= self._next_clock - 1e-9:
             self._next_clock = max(self._next_clock + 1.0 / self.settings.pub_clock_frequency, now)
             self._publish_clock(now)
@@ -328,12 +333,12 @@ def load_world(node: SimulatorNode, world_name: str) -> None:
         warnings = node.sim.load_world(world)
         # The node's real_time_factor parameter (the launch argument) wins over the world's pacing.
         node.sim.max_update_rate = node.settings.real_time_factor / node.sim.physics.time_step
-        for model in world.models:
-            node.add_interface(model.name, "")
+        for name in list(node.sim.models):  # the included and plugin-made models' plugins too
+            node.add_interface(name, "")
         node._restart_time()  # a world's <state> may start sim time elsewhere than 0
     if warnings:  # one line, at most MAX_SHOWN_WARNINGS of them
         rospy.logwarn("world %s: %s", path, "; ".join(summarise(warnings)))
-    rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, [m.name for m in world.models])
+    rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, list(node.sim.models))
 
 
 def main(overrides: Optional[Dict[str, object]] = None, notes: Sequence[str] = (), claim_sim_time: bool = False) -> int:

@@ -21,6 +21,7 @@ from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
 from turtle_sim_ode.world.lights import LightControl
 from turtle_sim_ode.world.plugins import DriveRobot, ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
+from turtle_sim_ode.world.rubble import RUBBLE, rubble
 from turtle_sim_ode.world.world_state import apply_world_state
 from turtle_sim_ode.world.values import WorldError, update_rate, vector
 
@@ -92,6 +93,7 @@ class Simulation(WorldControl, LightControl):
         self.sky_colour: Optional[Tuple[float, float, float]] = None
         # The loaded world's <spherical_coordinates> (latitude_deg, longitude_deg, elevation, heading_deg); GPS plugins.
         self.spherical_coordinates: Optional[Tuple[float, float, float, float]] = None
+        self.world_name = "default"  # the loaded world's (Gazebo's scoped sensor names begin with it)
         # What the cameras see of the models (their visuals), whose meshes are read through ``resources``.
         self.scene = Scene(self.models)
 
@@ -201,8 +203,8 @@ class Simulation(WorldControl, LightControl):
         return self.spawn_model(name, parse_sdf_model(sdf), pose, reference_frame)
 
     def load_world(self, world: World) -> List[str]:
-        """Take the world's physics and pacing, spawn its inline models; return warnings (one
-        per <include> other than ground_plane and sun, which cannot be resolved).
+        """Take the world's physics and pacing, spawn its models in the world's order; return warnings (one per
+        <include> that cannot be resolved). The world has a ground only where a ground plane model brings one.
 
         WorldError if models exist already, ModelError for bad physics or models; the world
         is left as it was.
@@ -222,26 +224,32 @@ class Simulation(WorldControl, LightControl):
         self.lights, self.sky_colour = {light.name: light for light in lights}, world.background
         self.had_sun = self.light_direction is not None
         self.spherical_coordinates = world.spherical_coordinates
+        self.world_name = world.name
         self.max_update_rate = rate
         warnings = list(world.warnings)
         includes = world.includes
         try:
             models = list(world.models)
-            if self.resources is not None and includes:
+            if includes:
                 included, includes = resolve_includes(world, self.resources)
-                models += included
+                models = sorted(models + included, key=lambda entry: entry.index)
+            self.physics.remove_ground()
             for entry in models:
                 warnings.extend(
                     f"model '{entry.name}': {warning}"
                     for warning in self.spawn_model(entry.name, entry.model, entry.spawn_pose, base=entry.base)
                 )
+            for plugin in (plugin for plugin in world.plugins if plugin.filename == RUBBLE):
+                for name, piece, pose in rubble(plugin):
+                    warnings.extend(f"model '{name}': {warning}" for warning in self.spawn_model(name, piece, pose))
         except Exception:
             for name in list(self.models):
                 self.delete(name)
+            self.physics.place_ground((0.0, 0.0, 1.0), 0.0)
             self.physics.set_params(old_params)
             self.max_update_rate = old_rate
             self.lights, self.sky_colour, self.had_sun = {}, None, False
-            self.spherical_coordinates = None
+            self.spherical_coordinates, self.world_name = None, "default"
             raise
         if world.state is not None:
             warnings.extend(apply_world_state(world.state, self.physics, self.models, self.lights))
@@ -251,7 +259,9 @@ class Simulation(WorldControl, LightControl):
             named = f" (model '{include.name}')" if include.name else ""
             warnings.append(f"cannot resolve {include.uri}{named}: not spawned")
         warnings.extend(
-            f"world plugin {plugin.filename} ({plugin.name}) is not supported: ignored" for plugin in world.plugins
+            f"world plugin {plugin.filename} ({plugin.name}) is not supported: ignored"
+            for plugin in world.plugins
+            if plugin.filename != RUBBLE
         )
         return warnings
 

@@ -13,6 +13,7 @@ from turtle_sim_ode.ros.plugins import (
     bumper,
     camera,
     diff_drive,
+    elevator,
     f3d,
     force,
     ft_sensor,
@@ -42,6 +43,7 @@ from turtle_sim_ode.sensors.plugins.multicamera import MultiCameraConfig
 from turtle_sim_ode.sensors.plugins.range_finder import RangeConfig
 from turtle_sim_ode.sensors.plugins.velodyne import VelodyneConfig
 from turtle_sim_ode.world.plugins import DriveConfig, GroundTruthConfig, JointStatesConfig
+from turtle_sim_ode.world.plugins.elevator import ElevatorConfig
 from turtle_sim_ode.world.plugins.f3d import F3dConfig
 from turtle_sim_ode.world.plugins.force import ForceConfig
 from turtle_sim_ode.world.plugins.ft_sensor import FtSensorConfig
@@ -79,6 +81,7 @@ ADAPTERS: Dict[type, Adapter] = {
     FtSensorConfig: ft_sensor.interfaces,
     VacuumGripperConfig: vacuum_gripper.interfaces,
     RosControlPluginConfig: ros_control.interfaces,
+    ElevatorConfig: elevator.interfaces,
 }
 
 

@@ -15,6 +15,7 @@ from turtle_sim_ode.sensors.config import SensorBlocks
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 from turtle_sim_ode.world.plugins import (
     diff_drive,
+    elevator,
     f3d,
     force,
     ft_sensor,
@@ -56,6 +57,7 @@ MODULES = (
     ft_sensor,
     vacuum_gripper,
     ros_control,
+    elevator,
 )
 MODEL_PLUGINS: Dict[str, Callable[[str, GazeboPlugin, Mapping[str, object]], object]] = {
     name: module.read for module in MODULES for name in module.MODEL_PLUGINS
