@@ -148,7 +148,8 @@ def test_camera_info_carries_the_plugins_baseline_distortion_and_lens_tags_as_ga
     info = camera_topics.camera_info(config, "optical", 79.5, 59.5)
     assert info.K == [100.0, 0.0, 81.5, 0.0, 100.0, 59.5, 0.0, 0.0, 1.0]
     assert info.P[3] == pytest.approx(-100.0 * 0.07)
-    assert list(info.D) == [0.1, 0.0, 0.3, 0.0, 0.5]  # k1, k2, k3, t1, t2: gazebo_ros's order
+    # D = {k1, k2, t1, t2, k3}: GazeboRosCameraUtils::Init (gazebo_plugins/src/gazebo_ros_camera_utils.cpp)
+    assert list(info.D) == [0.1, 0.0, 0.0, 0.5, 0.3]
     assert any("<focalLength> 100" in warning for warning in blocks.warnings), blocks.warnings
     plain = camera_topics.camera_info(
         read_sensors(WAFFLE.replace("<hackBaseline>0.07", "<hackBaseline>0")).cameras[0], "o", 79.5, 59.5

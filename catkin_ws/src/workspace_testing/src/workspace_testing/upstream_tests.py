@@ -126,6 +126,11 @@ class ScratchPackage:
         if self.opencv:
             lines.append(f"find_package(OpenCV REQUIRED COMPONENTS {' '.join(self.opencv)})")
         lines += ["catkin_package()", "include_directories(${catkin_INCLUDE_DIRS} ${OpenCV_INCLUDE_DIRS})"]
+        if self.gtests:
+            # Boost's bind placeholders (_1) in the global namespace, as Ubuntu 20.04's Boost 1.71 puts them, for
+            # the tests written against it (Debian 12's Boost 1.74 keeps them in boost::placeholders).
+            lines.append("add_definitions(-DBOOST_BIND_GLOBAL_PLACEHOLDERS)")
+            lines.append("add_compile_options(-include boost/bind.hpp)")
         lines.append("find_package(rostest REQUIRED)")
         for test in self.gtests:
             lines.append(f"add_rostest_gtest({test.target} {test.test_file} {' '.join(test.sources)})")

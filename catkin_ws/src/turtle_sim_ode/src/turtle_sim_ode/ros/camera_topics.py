@@ -33,8 +33,8 @@ POINT_FIELDS = [
 def camera_info(config: CameraConfig, frame: str, cx: float, cy: float) -> CameraInfo:
     """K and P of the pinhole the picture is rendered with (``config``'s size and FOV, principal point ``cx``, ``cy``),
     but where the plugin's tags say otherwise: gazebo_ros_camera_utils reports focalLength, Cx, Cy when not 0, Tx =
-    -fx hackBaseline, and D = distortionK1, K2, K3, T1, T2 (plumb_bob, in that order), though Gazebo's picture does
-    not follow them either."""
+    -fx hackBaseline, and D (plumb_bob: k1, k2, t1, t2, k3) from distortionK1, K2, T1, T2, K3, or with
+    <autoDistortion> from the lens (sensors.plugins.camera)."""
     f = config.info_focal_length or config.focal_length
     cx, cy = config.info_cx or cx, config.info_cy or cy
     info = CameraInfo()
