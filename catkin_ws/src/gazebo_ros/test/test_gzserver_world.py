@@ -4,7 +4,10 @@ through gazebo_ros's API. Expected values: gzserver's -u starts paused (gazebo-c
 ParseArgs/ProcessParams); gazebo_ros's API plugin sets /use_sim_time when it is unset (gazebo_ros_api_plugin.cpp,
 loadGazeboRosApiPlugin); the light services answer as getLightProperties/setLightProperties/deleteLight do; the
 physics through dynamic_reconfigure as physicsReconfigureCallback; the sun of model://sun is gazebo_models'
-sun/model.sdf (diffuse 0.8, attenuation constant 0.9, linear 0.01, quadratic 0.001)."""
+sun/model.sdf (diffuse 0.8, attenuation constant 0.9, linear 0.01, quadratic 0.001). The ground plane of
+model://ground_plane is a model (gazebo_models ground_plane/model.sdf, loaded as every <include>): listed by
+getWorldProperties (every world_->ModelByIndex(i), in load order) and publishModelStates, answered by getModelState,
+removed by deleteModel and spawned again by spawnSDFModel; without it nothing holds a box up."""
 import math
 import unittest
 
@@ -12,7 +15,8 @@ import rospy
 import rostest
 from dynamic_reconfigure.client import Client
 from gazebo_msgs import srv
-from geometry_msgs.msg import Point, Pose, Quaternion, Vector3, Wrench
+from gazebo_msgs.msg import ModelState, ModelStates
+from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import ColorRGBA
 from std_srvs.srv import Empty
@@ -41,7 +45,7 @@ class GzserverWorldTest(unittest.TestCase):
 
     def test_a_started_paused_with_the_worlds_models(self) -> None:
         world = self.world()
-        self.assertEqual(world.model_names, ["box_a", "box_b"])
+        self.assertEqual(world.model_names, ["ground_plane", "box_a", "box_b"])
         self.assertEqual(world.sim_time, 0.0)
         self.assertTrue(self.physics().pause)
         self.assertIs(rospy.get_param("/use_sim_time"), True)
@@ -115,6 +119,35 @@ class GzserverWorldTest(unittest.TestCase):
         z = self.model_state("box_a", "").pose.position.z
         self.assertLess(abs(z - 0.25), 0.01, "box_a should rest on the ground, the cleared wrench lifted it: z %g" % z)
         self.assertFalse(math.isnan(z))
+
+    def test_f_the_ground_plane_is_a_model_that_can_be_deleted_and_spawned_again(self) -> None:
+        states = rospy.wait_for_message("/gazebo/model_states", ModelStates, timeout=60)
+        self.assertEqual(states.name[0], "ground_plane")
+        ground = self.model_state("ground_plane", "")
+        self.assertTrue(ground.success, ground.status_message)
+        self.assertEqual((ground.pose.position.z, ground.pose.orientation.w), (0.0, 1.0))
+        deleted = service("delete_model", srv.DeleteModel)("ground_plane")
+        self.assertTrue(deleted.success, deleted.status_message)
+        self.assertNotIn("ground_plane", self.world().model_names)
+        start = rospy.wait_for_message("/clock", Clock, timeout=60).clock.to_sec()
+        while rospy.wait_for_message("/clock", Clock, timeout=60).clock.to_sec() < start + 0.5:
+            pass
+        self.assertLess(self.model_state("box_a", "").pose.position.z, 0.0, "box_a should fall without a ground")
+        spawned = service("spawn_sdf_model", srv.SpawnModel)("ground_plane", GROUND_PLANE, "", Pose(), "")
+        self.assertTrue(spawned.success, spawned.status_message)
+        up = ModelState("box_a", Pose(Point(1, 0, 0.6), Quaternion(0, 0, 0, 1)), Twist(), "")
+        self.assertTrue(service("set_model_state", srv.SetModelState)(up).success)
+        start = rospy.wait_for_message("/clock", Clock, timeout=60).clock.to_sec()
+        while rospy.wait_for_message("/clock", Clock, timeout=60).clock.to_sec() < start + 1.0:
+            pass
+        z = self.model_state("box_a", "").pose.position.z
+        self.assertLess(abs(z - 0.25), 0.01, "box_a should rest on the spawned ground plane: z %g" % z)
+
+
+# A ground plane as a user writes one for spawn_model -sdf: a static plane facing up.
+GROUND_PLANE = """<sdf version="1.6"><model name="ground_plane"><static>true</static><link name="link">
+  <collision name="collision"><geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>
+  </collision></link></model></sdf>"""
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@ the sensors/core bits. The robot is turned to face the bookshelf first. Expected
 kobuki_desktop (melodic) kobuki_gazebo_plugins/src/gazebo_ros_kobuki_updates.cpp (updateBumper, updateCliffSensor,
 updateWheelDrop, pubSensorState, propagateVelocityCommands) and gazebo_ros_kobuki.cpp (motorPowerCB)."""
 import math
+import struct
 import sys
 import threading
 import time
@@ -22,7 +23,7 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from gazebo_msgs.srv import SpawnModel
 from kobuki_msgs.msg import BumperEvent, CliffEvent, MotorPower, SensorState, WheelDropEvent
 from nav_msgs.msg import Odometry
-from sensor_msgs.msg import Imu, LaserScan
+from sensor_msgs.msg import CameraInfo, Image, Imu, LaserScan
 from std_msgs.msg import String
 
 # Where the playground's bookshelf stands (worlds/playground.world): its front board at y = 1.53 - 0.39, its back
@@ -131,6 +132,20 @@ class TurtlebotWorld(unittest.TestCase):
         ahead = scan.ranges[len(scan.ranges) // 2]
         expected = BOOKSHELF_BACK_Y - self.pose().position.y + CAMERA_BEHIND_BASE
         self.assertAlmostEqual(ahead, expected, delta=0.03)
+
+    def test_3b_the_scans_middle_beams_read_the_depth_images_centre(self):
+        """depthimage_to_laserscan (DepthImageToLaserScan::convert) bins each column at -atan2(u - cx, fx) from
+        camera_info's cx, which Gazebo reports as (width + 1) / 2 (gazebo_ros_camera_utils.cpp, Init): the middle
+        beam and the beam straight ahead then hold a column at the image's centre, never NaN on a flat board."""
+        info = rospy.wait_for_message("/camera/depth/camera_info", CameraInfo, self.timeout)
+        self.assertEqual((info.K[2], info.K[5]), ((info.width + 1) / 2.0, (info.height + 1) / 2.0))
+        image = rospy.wait_for_message("/camera/depth/image_raw", Image, self.timeout)
+        centre = struct.unpack_from("<f", image.data, (image.height // 2) * image.step + (image.width // 2) * 4)[0]
+        scan = rospy.wait_for_message("/scan", LaserScan, self.timeout)
+        straight_ahead = int(-scan.angle_min / scan.angle_increment)
+        tolerance = rospy.get_param("~centre_tolerance")
+        for index in (len(scan.ranges) // 2, straight_ahead):
+            self.assertAlmostEqual(scan.ranges[index], centre, delta=tolerance, msg="beam %d" % index)
 
     def place(self, x, y, z, yaw):
         pose = Pose(Point(x, y, z), Quaternion(0, 0, math.sin(yaw / 2), math.cos(yaw / 2)))

@@ -72,7 +72,8 @@ def test_nothing_is_rendered_unheard_and_camera_info_alone_renders_nothing(publi
     info: CameraInfo = FakePublisher.made["robot/cam/ir/camera_info"].messages[0]
     f = 64 / (2 * math.tan(1.047 / 2))
     assert info.K[0] == pytest.approx(f) and info.K[4] == pytest.approx(f)
-    assert (info.K[2], info.K[5], info.P[2], info.P[6]) == (31.5, 23.5, 31.5, 23.5)
+    # gazebo_ros_camera_utils.cpp, Init: cx_ = (width + 1) / 2, cy_ = (height + 1) / 2 where the plugin gives none
+    assert (info.K[2], info.K[5], info.P[2], info.P[6]) == (32.5, 24.5, 32.5, 24.5)
     assert (info.width, info.height, info.header.frame_id, list(info.D)) == (64, 48, "cam_optical", [0.0] * 5)
 
 

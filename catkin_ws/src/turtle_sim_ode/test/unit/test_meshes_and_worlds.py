@@ -74,8 +74,8 @@ def test_include_name_static_and_pose_override_the_models_own():
         "<uri>model://tso_mesh_room</uri><name>room_b</name><static>true</static>",
     )
     models, left = resolve_includes(parse_sdf_world(world), fixture_paths())
-    assert [m.name for m in models] == ["room_b"] and left == []
-    assert models[0].pose.xyz == (ROOM_X, 0.0, 0.0) and models[0].base == str(MESH_PACKAGE / "models" / "tso_mesh_room")
+    assert [m.name for m in models] == ["ground_plane", "room_b"] and left == []
+    assert models[1].pose.xyz == (ROOM_X, 0.0, 0.0) and models[1].base == str(MESH_PACKAGE / "models" / "tso_mesh_room")
 
 
 @pytest.mark.parametrize(

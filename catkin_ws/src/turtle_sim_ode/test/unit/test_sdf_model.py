@@ -55,7 +55,8 @@ ARM = model(
 # --- worlds ------------------------------------------------------------------------------
 def test_empty_world():
     world = parse_sdf_world((WORLDS / "empty.world").read_text())
-    assert (world.ground_plane, world.sun, world.models, world.includes) == (True, True, [], [])
+    assert (world.ground_plane, world.sun, world.models) == (True, True, [])
+    assert world.includes == [Include("model://ground_plane")]  # a model like any other, built in (includes.py)
     assert world.warnings == []
     physics = world.physics
     assert (physics.max_step_size, physics.solver, physics.iterations) == (0.001, "quick", 50)
@@ -139,9 +140,11 @@ def test_world_includes_plugins_and_ignored_parts():
         Include("model://turtlebot3_burger", "robot", Pose((1.0, 2.0, 0.0), (0.0, 0.0, 1.5)), False),
         Include("model://table"),
     ]
+    assert [include.index for include in world.includes] == [1, 2]  # after the <light>
     assert world.plugins[0].params == {"ros_ns": "/g"}
     assert world.physics.gravity == (0.0, 0.0, -1.0)  # SDF 1.4 puts it in <physics>
-    assert world.ground_plane and not world.sun and world.models == []
+    assert world.ground_plane and not world.sun and [model.name for model in world.models] == ["ground_plane"]
+    assert world.models[0].index == 6  # after the includes, plugin, actor and physics, as written
     assert world.warnings == ["<world> <actor> is not supported, ignored"]
 
 
@@ -155,7 +158,8 @@ def test_world_physics_default_block_and_range():
         )
     )
     assert world.physics.max_step_size is None  # the default block is the second one
-    assert "only its ODE settings" in world.warnings[0] and "no ground_plane" in world.warnings[1]
+    # A world without a ground plane has no ground (Gazebo's World::Load adds none): no warning either.
+    assert len(world.warnings) == 1 and "only its ODE settings" in world.warnings[0]
     with pytest.raises(ModelError, match="erp"):
         world.physics.apply(PhysicsParams())
 

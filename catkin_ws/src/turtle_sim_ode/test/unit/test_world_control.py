@@ -655,9 +655,9 @@ def test_load_world_sets_physics_and_pacing_and_spawns_inline_models():
     properties = sim.physics_properties()
     assert properties["time_step"] == 0.002 and properties["ode_config"]["sor_pgs_iters"] == 30
     assert properties["max_update_rate"] == pytest.approx(1000.0) and sim.real_time_factor == pytest.approx(2.0)
-    assert list(sim.models) == ["crate", "MODEL2"]
+    assert list(sim.models) == ["ground_plane", "crate", "MODEL2"]  # the world's order; the ground plane built in
     assert sim.get_model_state("crate")[0] == pytest.approx((1, 0, 0.5))
-    with pytest.raises(WorldError, match=r"load_world needs an empty world, but models \['crate', 'MODEL2'\]"):
+    with pytest.raises(WorldError, match=r"load_world needs an empty world, but models \['ground_plane', 'crate'"):
         sim.load_world(parse_sdf_world(WORLD))
 
 

@@ -69,12 +69,14 @@ def test_env_hook_defaults_the_world_file():
     assert ": ${TURTLEBOT_GAZEBO_WORLD_FILE:=" in hook and "export TURTLEBOT_GAZEBO_WORLD_FILE" in hook
 
 
-# name: (x, y, yaw) in upstream's playground.world (the <state> poses), and the tolerance we keep to
+# name: (x, y, yaw) in upstream's playground.world, in its order, where Gazebo loads them (World::Load applies the
+# world's <state>, which turns the Dumpster from its model's yaw -0.3 to 0)
 UPSTREAM_PLAYGROUND = {
     "bookshelf": (0.0, 1.53026, 0.0),
-    "Dumpster": (1.0, -3.44458, -0.3),
     "jersey_barrier": (-4.0, -1.0, -0.7),
+    "ground_plane_0": (0.497681, 0.0, 0.0),
     "unit_cylinder_1": (-2.0, -3.4888, 0.0),
+    "Dumpster": (1.0, -3.44458, 0.0),
     "cube_20k": (1.41131, -1.0, 0.9),
 }
 
@@ -86,12 +88,15 @@ def pose_of(element: ET.Element) -> tuple:
 
 def test_playground_has_upstreams_models_near_their_poses():
     world = ET.parse(str(PACKAGE_ROOT / "worlds" / "playground.world")).getroot().find("world")
-    models = {m.get("name"): pose_of(m) for m in world.findall("model")}
-    models.update({i.findtext("name"): pose_of(i) for i in world.findall("include") if i.findtext("name")})
-    assert set(models) == set(UPSTREAM_PLAYGROUND)
+    models = {
+        (m.get("name") if m.tag == "model" else m.findtext("name")): pose_of(m)
+        for m in world
+        if m.tag in ("model", "include") and m.findtext("uri") != "model://sun"
+    }
+    assert list(models) == list(UPSTREAM_PLAYGROUND)  # get_world_properties lists them in this order
     for name, (x, y, yaw) in UPSTREAM_PLAYGROUND.items():
         mx, my, myaw = models[name]
-        assert math.hypot(mx - x, my - y) < 0.05 and abs(myaw - yaw) < 1e-6, name
+        assert math.hypot(mx - x, my - y) < 1e-6 and abs(myaw - yaw) < 1e-6, name
     cube = [i for i in world.findall("include") if i.findtext("name") == "cube_20k"][0]
     model = PACKAGE_ROOT / "models" / cube.findtext("uri").replace("model://", "")
     assert "<mesh>" in (model / "model.sdf").read_text()  # the mesh cube collides as a mesh

@@ -8,82 +8,28 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 import ode
 
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, Mesh, Pose, RobotModel, Sphere
+from turtle_sim_ode.models.urdf import MAX_LENGTH, Box, Cylinder, Geometry, Joint, Mesh, RobotModel, Sphere
+from turtle_sim_ode.models.transforms import (  # noqa: F401 (the names other modules import from here)
+    Matrix3,
+    Quat,
+    Transform,
+    Vec3,
+    compose,
+    inverse,
+    pose_transform,
+    quat_from_rpy,
+    quat_matrix,
+    quat_multiply,
+    quat_rotate,
+    rpy_of,
+)
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.trimesh import MeshGeom, remove_geom
 from turtle_sim_ode.physics.world import PhysicsWorld, SurfaceParams
 
-Vec3 = Tuple[float, float, float]
-Quat = Tuple[float, float, float, float]  # (w, x, y, z) as ODE; only link_pose gives ROS's xyzw
-Transform = Tuple[Vec3, Quat]
-Matrix3 = Tuple[Vec3, Vec3, Vec3]
-
 _TWO_PI = 2 * math.pi
 _NO_ROTATION: Quat = (1.0, 0.0, 0.0, 0.0)
-
-
-# --- rigid transforms (plain floats: cheaper than numpy for 3-vectors) ----------------
-def quat_from_rpy(roll: float, pitch: float, yaw: float) -> Quat:
-    """URDF fixed-axis rpy: Rz(yaw) * Ry(pitch) * Rx(roll)."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (
-        cr * cp * cy + sr * sp * sy,
-        sr * cp * cy - cr * sp * sy,
-        cr * sp * cy + sr * cp * sy,
-        cr * cp * sy - sr * sp * cy,
-    )
-
-
-def quat_multiply(a: Quat, b: Quat) -> Quat:
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return (
-        aw * bw - ax * bx - ay * by - az * bz,
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-    )
-
-
-def quat_rotate(q: Quat, v: Vec3) -> Vec3:
-    w, x, y, z = q
-    # v + 2w(u x v) + 2u x (u x v), u = (x, y, z)
-    tx, ty, tz = 2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]), 2 * (x * v[1] - y * v[0])
-    return (v[0] + w * tx + y * tz - z * ty, v[1] + w * ty + z * tx - x * tz, v[2] + w * tz + x * ty - y * tx)
-
-
-def quat_matrix(q: Quat) -> Matrix3:
-    columns = [quat_rotate(q, axis) for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
-    return tuple(tuple(columns[c][r] for c in range(3)) for r in range(3))  # type: ignore[return-value]
-
-
-def rpy_of(q: Quat) -> Vec3:
-    """Fixed-axis roll, pitch, yaw of a quaternion (inverse of quat_from_rpy)."""
-    m = quat_matrix(q)
-    cos_pitch = math.hypot(m[0][0], m[1][0])
-    pitch = math.atan2(-m[2][0], cos_pitch)
-    if cos_pitch < 1e-9:  # gimbal lock: only roll and yaw together are defined; all in yaw
-        return (0.0, pitch, math.atan2(-m[0][1], m[1][1]))
-    return (math.atan2(m[2][1], m[2][2]), pitch, math.atan2(m[1][0], m[0][0]))
-
-
-def compose(a: Transform, b: Transform) -> Transform:
-    moved = quat_rotate(a[1], b[0])
-    return ((a[0][0] + moved[0], a[0][1] + moved[1], a[0][2] + moved[2]), quat_multiply(a[1], b[1]))
-
-
-def inverse(t: Transform) -> Transform:
-    w, x, y, z = t[1]
-    conjugate = (w, -x, -y, -z)
-    back = quat_rotate(conjugate, t[0])
-    return ((-back[0], -back[1], -back[2]), conjugate)
-
-
-def pose_transform(pose: Pose) -> Transform:
-    return (pose.xyz, quat_from_rpy(*pose.rpy))
 
 
 # --- handles -------------------------------------------------------------------------
@@ -179,11 +125,21 @@ def _after_step_hook(continuous: List[JointHandle], damping: List[Tuple[JointHan
 
 
 def _remove_static_geoms(physics: PhysicsWorld, space: ode.SpaceBase, geoms: Dict[str, List[ode.GeomObject]]) -> None:
-    """Take a static model's geoms out of the shared static space."""
+    """Take a static model's geoms out of the shared static space (and the ground away if it is one of them)."""
     for link_geoms in geoms.values():
         for geom in link_geoms:
+            if geom is physics.ground:
+                physics.remove_ground()
+                continue
             physics.unregister_geom(geom)
             remove_geom(space, geom)
+
+
+def _plane_params(box: Box, transform: Transform) -> Tuple[Vec3, float]:
+    """(unit normal, offset) of the plane holding the top face of a <plane>'s thin ``box`` placed at ``transform``."""
+    normal = quat_rotate(transform[1], (0.0, 0.0, 1.0))
+    top = [c + n * box.size[2] / 2 for c, n in zip(transform[0], normal)]
+    return normal, sum(t * n for t, n in zip(top, normal))
 
 
 class BuiltModel:
@@ -275,6 +231,12 @@ class BuiltModel:
             body.setAngularVel((0.0, 0.0, 0.0))
         if self.robot.static:
             for geom in (geom for link_geoms in self.geoms.values() for geom in link_geoms):
+                if geom is self._physics.ground:
+                    normal, offset = geom.getParams()
+                    point = compose(move, (tuple(n * offset for n in normal), _NO_ROTATION))[0]
+                    turned = quat_rotate(move[1], normal)
+                    geom.setParams(turned, sum(p * n for p, n in zip(point, turned)))
+                    continue
                 position, quaternion = compose(move, (geom.getPosition(), geom.getQuaternion()))
                 geom.setPosition(position)
                 geom.setQuaternion(quaternion)
@@ -493,9 +455,14 @@ def _build_static(physics: PhysicsWorld, robot: RobotModel, world_of: Dict[str, 
             surface = _surface_for(robot, link, physics.params.default_surface)
             geoms[link] = []
             for collision in robot.links[link].collisions:
+                placed = compose(transform, pose_transform(collision.origin))
+                if collision.plane and isinstance(collision.geometry, Box) and not physics.has_ground:
+                    # Gazebo's ODE plane is infinite: the world's ground (one a world; a second plane is its box).
+                    geoms[link].append(physics.place_ground(*_plane_params(collision.geometry, placed), surface))
+                    continue
                 geom = _create_geom(space, collision.geometry)
                 geoms[link].append(geom)
-                position, quaternion = compose(transform, pose_transform(collision.origin))
+                position, quaternion = placed
                 geom.setPosition(position)
                 geom.setQuaternion(quaternion)
                 physics.register_geom(geom, surface)

@@ -75,20 +75,50 @@ def check_include_chain(
         check_include_chain(paths, nested, chain, visited)
 
 
-def resolve_includes(world: World, paths: ResourcePaths) -> Tuple[List[WorldModel], List[Include]]:
-    """The world's model:// includes as models to spawn, and the includes left unresolved (other URI schemes);
-    ModelError naming the include where one cannot be read or parsed, or where two models get one name."""
+# model://ground_plane when no model folder of that name is on the model path: the model Gazebo's model database
+# serves (gazebo_models ground_plane/model.sdf): static, one link "link", a 100 m x 100 m plane facing up whose
+# collision has friction mu 100, mu2 50, drawn in Gazebo/Grey.
+BUILT_IN_GROUND_PLANE = """<?xml version="1.0"?>
+<sdf version="1.6">
+  <model name="ground_plane">
+    <static>true</static>
+    <link name="link">
+      <collision name="collision">
+        <geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>
+        <surface><friction><ode><mu>100</mu><mu2>50</mu2></ode></friction></surface>
+      </collision>
+      <visual name="visual">
+        <cast_shadows>false</cast_shadows>
+        <geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>
+        <material><script><uri>file://media/materials/scripts/gazebo.material</uri><name>Gazebo/Grey</name></script></material>
+      </visual>
+    </link>
+  </model>
+</sdf>
+"""
+GROUND_PLANE = "ground_plane"
+
+
+def resolve_includes(world: World, paths: Optional[ResourcePaths]) -> Tuple[List[WorldModel], List[Include]]:
+    """The world's model:// includes as models to spawn, and the includes left unresolved (other URI schemes, or
+    any but the built-in ground plane without ``paths``); ModelError naming the include where one cannot be read or
+    parsed, or where two models get one name. A ground_plane folder on the model path wins over the built-in one."""
     names: Set[str] = {model.name for model in world.models}
     models: List[WorldModel] = []
     left: List[Include] = []
     for include in world.includes:
-        if not include.uri.startswith("model://"):
+        name = include.uri[len("model://") :].strip("/")
+        built_in = name == GROUND_PLANE and (paths is None or paths.model_folder(name) is None)
+        if not include.uri.startswith("model://") or (paths is None and not built_in):
             left.append(include)
             continue
-        name = include.uri[len("model://") :].strip("/")
         try:
-            check_include_chain(paths, name)
-            folder, text = model_file(paths, name)
+            if built_in:
+                folder, text = None, BUILT_IN_GROUND_PLANE
+            else:
+                assert paths is not None  # an unresolvable include was left above
+                check_include_chain(paths, name)
+                folder, text = model_file(paths, name)
             model, own_pose = parse_included_model(text, include.name, include.static)
         except ModelError as error:
             raise ModelError(f"<include> {include.uri}: {error}") from None
@@ -96,7 +126,7 @@ def resolve_includes(world: World, paths: ResourcePaths) -> Tuple[List[WorldMode
             raise ModelError(f"<include> {include.uri}: two models are named '{model.name}'")
         names.add(model.name)
         pose = include.pose if include.pose != Pose() else own_pose
-        models.append(WorldModel(model.name, pose, model, folder))
+        models.append(WorldModel(model.name, pose, model, folder, include.index))
     return models, left
 
 

@@ -154,6 +154,8 @@ class WorldModel:
     model: RobotModel
     # The folder of the file the model came from (an <include>d model's), for its relative mesh names.
     base: Optional[str] = None
+    # Its place among the world's <model>s and <include>s: Gazebo loads them in that order.
+    index: int = field(default=0, compare=False)
 
     @property
     def spawn_pose(self) -> Tuple[float, float, float, float, float, float]:
@@ -169,6 +171,7 @@ class Include:
     name: Optional[str] = None
     pose: Pose = Pose()
     static: Optional[bool] = None
+    index: int = field(default=0, compare=False)  # as WorldModel's
 
 
 @dataclass
@@ -180,7 +183,7 @@ class World:
     models: List[WorldModel] = field(default_factory=list)
     includes: List[Include] = field(default_factory=list)
     plugins: List[GazeboPlugin] = field(default_factory=list)
-    # model://ground_plane (or an inline "ground_plane" model): the physics ground at z=0.
+    # model://ground_plane (or an inline "ground_plane" model); without one the world has no ground, as in Gazebo.
     ground_plane: bool = False
     sun: bool = False
     # The world's <light>s in order (model://sun is models.lights.SUN); <scene><background> (None: Gazebo's).
@@ -375,7 +378,9 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
     for index, collision in enumerate(element.findall("collision")):
         collision_name = collision.get("name") or f"{name}_collision_{index}"
         where = f"{what} collision '{collision_name}'"
-        link.collisions.append(Collision(collision_name, *_placed(collision, where, static, model.warnings)))
+        origin, geometry = _placed(collision, where, static, model.warnings)
+        plane = collision.find("geometry/plane") is not None
+        link.collisions.append(Collision(collision_name, origin, geometry, plane))
         values = _parse_surface(collision.find("surface"), where, model.warnings)
         if any(surface.get(key, value) != value for key, value in values.items()):
             model.warnings.append(
@@ -630,26 +635,23 @@ def parse_sdf_world(text: str) -> World:
     warnings: List[str] = []
     world = World(element.get("name", "default"), _parse_physics(element, warnings), warnings=warnings)
     names: Set[str] = set()
-    for child in element:
+    for index, child in enumerate(element):
         if child.tag == "model":
             model, pose = _parse_model(child, version)
-            if model.name == GROUND_PLANE_NAME and model.static:
-                world.ground_plane = True
-                continue
+            world.ground_plane = world.ground_plane or model.name == GROUND_PLANE_NAME
             if model.name in names:
                 raise ModelError(f"two models are named '{model.name}'")
             names.add(model.name)
-            world.models.append(WorldModel(model.name, pose, model))
+            world.models.append(WorldModel(model.name, pose, model, index=index))
         elif child.tag == "include":
             uri = child_text(child, "uri")
             if uri is None:
                 raise ModelError("<include> needs a <uri>")
-            if uri == GROUND_PLANE_URI:
-                world.ground_plane = True
-            elif uri == SUN_URI:
+            if uri == SUN_URI:
                 world.sun = True
                 world.lights.append(replace(SUN, name=child_text(child, "name") or SUN.name))
             else:
+                world.ground_plane = world.ground_plane or uri.rstrip("/") == GROUND_PLANE_URI
                 name = child_text(child, "name")
                 if name is not None:
                     if name in names:
@@ -662,6 +664,7 @@ def parse_sdf_world(text: str) -> World:
                         name,
                         _pose(child, f"<include> '{uri}'"),
                         None if static is None else _bool(child, "static", f"<include> '{uri}'", False),
+                        index,
                     )
                 )
         elif child.tag == "plugin":
@@ -679,6 +682,4 @@ def parse_sdf_world(text: str) -> World:
             world.spherical_coordinates = tuple(values)  # type: ignore[assignment]
         elif child.tag not in SILENT_WORLD_TAGS + ("physics", "gravity"):
             warnings.append(f"<world> <{child.tag}> is not supported, ignored")
-    if not world.ground_plane:
-        warnings.append("the world has no ground_plane; the simulator's ground at z=0 is " "there anyway")
     return world

@@ -102,6 +102,8 @@ class Collision:
     name: str
     origin: Pose
     geometry: Geometry
+    # An SDF <plane> (``geometry`` is its thin box): Gazebo's ODE collides with the whole plane, the box's top face.
+    plane: bool = False
 
 
 @dataclass(frozen=True)

@@ -308,7 +308,7 @@ def _friction_direction(
 
 
 class PhysicsWorld:
-    """ODE world, collision spaces, ground plane at z=0 and a fixed-step clock.
+    """ODE world, collision spaces, a ground plane (at z=0 until a model places or removes it), a fixed-step clock.
 
     Each model gets its own sub-space (see ``create_model_space``) so pairs inside a
     model are never tested unless the model asks for self-collision. The ground
@@ -342,6 +342,8 @@ class PhysicsWorld:
         self._static_space: Optional[ode.SpaceBase] = None
         self._self_colliding: List[ode.SpaceBase] = []
         self._surfaces: Dict[ode.GeomObject, SurfaceParams] = {self.ground: _ground_surface(p.ground_surface)}
+        self._has_ground = True
+        self._ground_given: Optional[SurfaceParams] = None  # the surface of the model that placed it
         # (geom, body, contact) of every dynamic geom, tested against the ground.
         self._ground_tests: List[Tuple[ode.GeomObject, ode.Body, PairContact]] = []
         self._pair_cache: Dict[Tuple[ode.GeomObject, ode.GeomObject], PairContact] = {}
@@ -393,8 +395,34 @@ class PhysicsWorld:
         self.params = params
         configure_world(self.world, self.params)
         self._stepper = self.world.quickStep if params.solver == "quick" else self.world.step
-        self._surfaces[self.ground] = _ground_surface(params.ground_surface)
         self._pair_cache.clear()
+        self._set_ground_surface(self._ground_given or params.ground_surface)
+
+    # --- the ground plane -------------------------------------------------------------
+    @property
+    def has_ground(self) -> bool:
+        """Whether the ground plane is there (a world without a ground plane model has none, as in Gazebo)."""
+        return self._has_ground
+
+    def place_ground(
+        self, normal: Sequence[float], offset: float, surface: Optional[SurfaceParams] = None
+    ) -> ode.GeomPlane:
+        """Make the ground the plane normal . p = offset (unit ``normal``) with ``surface`` (None: the params'
+        ground_surface); return its geom."""
+        self.ground.setParams(normal, offset)
+        self._has_ground, self._ground_given = True, surface
+        self._set_ground_surface(surface or self.params.ground_surface)
+        return self.ground
+
+    def remove_ground(self) -> None:
+        """No ground plane: nothing collides with it or sees it until ``place_ground``."""
+        self._has_ground, self._ground_given = False, None
+        self._kernel_stale = True
+
+    def _set_ground_surface(self, surface: SurfaceParams) -> None:
+        self._surfaces[self.ground] = _ground_surface(surface)
+        for pair in [pair for pair in self._pair_cache if self.ground in pair]:
+            del self._pair_cache[pair]
         self._kernel_stale = True
         self._ground_tests = [
             (geom, body, self._pair_contact(self.ground, geom)) for geom, body, _ in self._ground_tests
@@ -570,7 +598,7 @@ class PhysicsWorld:
             [[self._combine(a, b) for b in surfaces] for a in surfaces],
             [(self._body_ids[a], self._body_ids[b]) for a, b in self._jointed],
             self.ground._id(),
-            [geom._id() for geom, _, _ in self._ground_tests],
+            [geom._id() for geom, _, _ in self._ground_tests] if self._has_ground else [],
             self.space._id(),
             [space._id() for space in self._self_colliding],
             self.params.max_contacts,
@@ -583,7 +611,7 @@ class PhysicsWorld:
         watched = self._watched
         ground_watched = ground in watched
         collide = _collide
-        for geom, body, pair in self._ground_tests:
+        for geom, body, pair in self._ground_tests if self._has_ground else ():
             contacts = collide(ground, geom)
             if contacts:
                 if ground_watched or geom in watched:  # a bumper's watch leaves the wheels' contacts alone

@@ -90,10 +90,13 @@ def templates(sensor: CameraSensor) -> Dict[str, Any]:
     config, frame = sensor.config, sensor.frame
     image = Image(encoding=config.encoding, height=config.height, width=config.width)
     image.step = config.width * BYTES_PER_PIXEL[config.encoding]
-    found = {"image": image, "info": camera_info(config, frame, sensor.cx, sensor.cy)}
+    # gazebo_ros_camera_utils.cpp (Init): Cx, Cy where the plugin gives none are (width + 1) / 2, (height + 1) / 2,
+    # half a pixel right of and below the centre Gazebo renders about; depthimage_to_laserscan's angle bins fit them.
+    cx, cy = (config.width + 1) / 2.0, (config.height + 1) / 2.0
+    found = {"image": image, "info": camera_info(config, frame, cx, cy)}
     if config.depth:
         found["depth"] = Image(encoding="32FC1", height=config.height, width=config.width, step=4 * config.width)
-        found["depth_info"] = camera_info(config, frame, sensor.cx, sensor.cy)
+        found["depth_info"] = camera_info(config, frame, cx, cy)
         cloud = PointCloud2(height=config.height, width=config.width, fields=POINT_FIELDS)
         cloud.point_step, cloud.row_step = POINT_STEP, POINT_STEP * config.width
         found["points"] = cloud

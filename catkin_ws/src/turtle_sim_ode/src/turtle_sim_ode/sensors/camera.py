@@ -138,12 +138,12 @@ class CameraSensor(MountedSensor):
         origin, rotation = self.optical_pose()
         textured: List[TexturedRow] = []
         table, meshes = scene.drawables(self.physics, self.model, textured)
-        ground = self.physics.ground
+        ground = self.physics.ground if self.physics.has_ground else None
         if self._caster is not None:
             # Near to far, the ground last: a farther surface then fails the depth test before it is shaded.
             near_first = table[np.argsort(((table[:, 1:4] - origin) ** 2).sum(axis=1), kind="stable")]
             depth64, depth, rgb = self._caster.render(
-                np.vstack((near_first, primitive_row(ground, GROUND_COLOR))),
+                near_first if ground is None else np.vstack((near_first, primitive_row(ground, GROUND_COLOR))),
                 meshes,
                 origin,
                 rotation,
@@ -173,9 +173,12 @@ class CameraSensor(MountedSensor):
             lit = np.clip(normals.reshape(region.shape + (3,))[nearer] @ self._light, 0.0, 1.0)
             shade[j0:j1, i0:i1][nearer] = np.outer(AMBIENT + (1.0 - AMBIENT) * lit, colour)
 
-        normal, offset = ground.getParams()
-        t, normals = hit_plane(origin, dirs.reshape(-1, 3), np.array(normal, dtype=float), offset, t_min.reshape(-1))
-        paint(t, normals, GROUND_COLOR, (0, width, 0, height))
+        if ground is not None:
+            normal, offset = ground.getParams()
+            t, normals = hit_plane(
+                origin, dirs.reshape(-1, 3), np.array(normal, dtype=float), offset, t_min.reshape(-1)
+            )
+            paint(t, normals, GROUND_COLOR, (0, width, 0, height))
         for pose, vertices, faces in meshes:
             colour = tuple(pose[12:15])
             for corners in mesh_triangles(pose, vertices, faces):

@@ -153,7 +153,8 @@ class CliffSensor:
         starts = [compose(base, (offset, _NO_ROTATION))[0] for offset in self.offsets]
         for ray, start in zip(self._rays, starts):
             ray.set(start, down)
-        distances = [ray_distance(ray, self.physics.ground) for ray in self._rays]
+        ground = self.physics.ground if self.physics.has_ground else None
+        distances = [math.inf if ground is None else ray_distance(ray, ground) for ray in self._rays]
         reach = self.max_range
         # The box around all rays: the starts' box stretched by the (common) ray vector.
         xs, ys, zs = zip(*starts)

@@ -169,7 +169,7 @@ class LaserScanner:
                 beams = self._candidates(math.atan2(py, px), math.asin(cut / d) + 1e-9)
             cast(beams, geom)
         # Ground plane z = 0: only beams pointing down to it within range.
-        if 0 < oz <= range_max * math.hypot(r20, r21):
+        if self.physics.has_ground and 0 < oz <= range_max * math.hypot(r20, r21):
             down = [i for i in all_beams if cosines[i] * r20 + sines[i] * r21 < -oz / range_max]
             cast(down, self.physics.ground)
         return self._ranges(distances, cast_beams)

@@ -81,7 +81,8 @@ class MultiBeamLidar(MountedSensor):
             row = primitive_row(geom, NO_COLOUR)
             if row is not None:
                 rows.append(row)
-        rows.append(primitive_row(self.physics.ground, NO_COLOUR))
+        if self.physics.has_ground:
+            rows.append(primitive_row(self.physics.ground, NO_COLOUR))
         return np.array(rows), meshes
 
     def ranges(self, noisy: bool = True) -> np.ndarray:

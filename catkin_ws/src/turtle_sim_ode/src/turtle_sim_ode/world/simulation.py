@@ -201,8 +201,8 @@ class Simulation(WorldControl, LightControl):
         return self.spawn_model(name, parse_sdf_model(sdf), pose, reference_frame)
 
     def load_world(self, world: World) -> List[str]:
-        """Take the world's physics and pacing, spawn its inline models; return warnings (one
-        per <include> other than ground_plane and sun, which cannot be resolved).
+        """Take the world's physics and pacing, spawn its models in the world's order; return warnings (one per
+        <include> that cannot be resolved). The world has a ground only where a ground plane model brings one.
 
         WorldError if models exist already, ModelError for bad physics or models; the world
         is left as it was.
@@ -227,9 +227,10 @@ class Simulation(WorldControl, LightControl):
         includes = world.includes
         try:
             models = list(world.models)
-            if self.resources is not None and includes:
+            if includes:
                 included, includes = resolve_includes(world, self.resources)
-                models += included
+                models = sorted(models + included, key=lambda entry: entry.index)
+            self.physics.remove_ground()
             for entry in models:
                 warnings.extend(
                     f"model '{entry.name}': {warning}"
@@ -238,6 +239,7 @@ class Simulation(WorldControl, LightControl):
         except Exception:
             for name in list(self.models):
                 self.delete(name)
+            self.physics.place_ground((0.0, 0.0, 1.0), 0.0)
             self.physics.set_params(old_params)
             self.max_update_rate = old_rate
             self.lights, self.sky_colour, self.had_sun = {}, None, False

@@ -14,9 +14,6 @@ from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.models.world_state import Six, WorldState
 from turtle_sim_ode.physics.world import PhysicsWorld
 
-# The ground plane is built in (not a model here): a saved state of it has nothing to move.
-BUILT_IN_MODELS = ("ground_plane",)
-
 
 def _transform(pose: Six) -> Transform:
     return (pose[0], pose[1], pose[2]), quat_from_rpy(pose[3], pose[4], pose[5])
@@ -31,8 +28,7 @@ def apply_world_state(
     for name, model_state in state.models.items():
         model = models.get(name)
         if model is None:
-            if name not in BUILT_IN_MODELS:
-                warnings.append(f"<state> has model '{name}', which the world does not have: ignored")
+            warnings.append(f"<state> has model '{name}', which the world does not have: ignored")
             continue
         model.set_transform(_transform(model_state.pose))
         for link, link_state in model_state.links.items():

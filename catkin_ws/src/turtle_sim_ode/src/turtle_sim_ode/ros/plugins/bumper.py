@@ -22,7 +22,8 @@ class ContactsPublisher(Periodic):
     ContactState per touching pair with Gazebo's scoped collision names. Contact forces are not measured:
     wrenches are zero."""
 
-    GROUND = "ground_plane::link::collision"
+    # The ground plane model's collision; the model is named ground_plane unless the world names it otherwise.
+    GROUND = "%s::link::collision"
 
     def __init__(self, sim: Simulation, model: BuiltModel, config: ContactConfig, namespace: str) -> None:
         super().__init__(period(config.update_rate))
@@ -36,7 +37,8 @@ class ContactsPublisher(Periodic):
 
     def _name(self, geom: ode.GeomObject) -> str:
         if geom is self._physics.ground:
-            return self.GROUND
+            owners = (model.name for model in self._sim.models.values() if geom in model.geoms.get("link", ()))
+            return self.GROUND % next(owners, "ground_plane")
         if geom not in self._names:  # a model spawned since: name every geom again
             self._names = {
                 g: "%s::%s::%s_collision%s" % (model.name, link, link, "_%d" % i if i else "")
