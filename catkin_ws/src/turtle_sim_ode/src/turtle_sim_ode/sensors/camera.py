@@ -221,8 +221,11 @@ class CameraSensor(MountedSensor):
         if self._distortion is not None:
             rgb = self._distortion.apply(rgb)
         if config.noise_stddev > 0 or config.noise_mean != 0:
-            noisy = rgb / 255.0 + self._rng.normal(config.noise_mean, config.noise_stddev, rgb.shape)
-            rgb = (np.clip(noisy, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+            # One sample a pixel, added to each of its channels (0..1), as gazebo-classic's ImageGaussianNoiseModel
+            # shader adds it; float32 (a 640 x 480 frame's noise in a few ms, not tens).
+            noise = self._rng.standard_normal(rgb.shape[:2] + (1,), dtype=np.float32)
+            noisy = rgb * np.float32(1.0 / 255.0) + (noise * np.float32(config.noise_stddev) + np.float32(config.noise_mean))
+            rgb = (np.clip(noisy, 0.0, 1.0) * np.float32(255.0) + np.float32(0.5)).astype(np.uint8)
         return rgb
 
     def depth_image(self, frame: Frame) -> np.ndarray:
