@@ -71,7 +71,9 @@ def test_noise_spares_points_at_the_maximum() -> None:
 def test_the_ray_shape_ranges_are_without_the_sensor_noise() -> None:
     """RaySensor adds <ray><noise> to its scan message; gazebo_ros_block_laser's PutLaserData reads the ray shape
     (LaserShape()->GetRange), which has none: hits just past range min stay finite and within the range."""
-    noisy = BLOCK_SDF.replace("</range>", "</range><noise><type>gaussian</type><mean>0</mean><stddev>0.5</stddev></noise>")
+    noisy = BLOCK_SDF.replace(
+        "</range>", "</range><noise><type>gaussian</type><mean>0</mean><stddev>0.5</stddev></noise>"
+    )
     sim = Simulation()
     sim.spawn_sdf("bot", noisy)
     sim.spawn_sdf("wall", WALL_SDF, (1.6, 0.0, 2.0, 0, 0, 0))

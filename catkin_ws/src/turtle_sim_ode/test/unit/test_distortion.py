@@ -134,7 +134,9 @@ def test_bad_distortion_tags_are_refused_by_name(distortion: str, tags: str) -> 
 
 
 def test_depth_cameras_say_they_draw_no_distortion() -> None:
-    sdf = CAMERA.replace('type="camera"', 'type="depth"').replace("libgazebo_ros_camera.so", "libgazebo_ros_openni_kinect.so")
+    sdf = CAMERA.replace('type="camera"', 'type="depth"').replace(
+        "libgazebo_ros_camera.so", "libgazebo_ros_openni_kinect.so"
+    )
     sensors = read_sdf_sensors(sdf.format(distortion=LENS, tags=""))
     (config,) = sensors.configs
     assert config.lens.identity and any("not drawn" in warning for warning in sensors.warnings)

@@ -78,7 +78,10 @@ def find_upstream(env_var: str, url: str, cache: str, ref: str) -> Tuple[Optiona
     if not os.path.isdir(cache):
         try:
             subprocess.run(
-                ["git", "clone", "--quiet", "--mirror", url, cache], check=True, capture_output=True, timeout=GIT_TIMEOUT
+                ["git", "clone", "--quiet", "--mirror", url, cache],
+                check=True,
+                capture_output=True,
+                timeout=GIT_TIMEOUT,
             )
         except (subprocess.SubprocessError, OSError) as error:
             return None, f"${env_var} is not set and {url} cannot be cloned into {cache} ({error})"

@@ -224,7 +224,9 @@ class CameraSensor(MountedSensor):
             # One sample a pixel, added to each of its channels (0..1), as gazebo-classic's ImageGaussianNoiseModel
             # shader adds it; float32 (a 640 x 480 frame's noise in a few ms, not tens).
             noise = self._rng.standard_normal(rgb.shape[:2] + (1,), dtype=np.float32)
-            noisy = rgb * np.float32(1.0 / 255.0) + (noise * np.float32(config.noise_stddev) + np.float32(config.noise_mean))
+            noisy = rgb * np.float32(1.0 / 255.0) + (
+                noise * np.float32(config.noise_stddev) + np.float32(config.noise_mean)
+            )
             rgb = (np.clip(noisy, 0.0, 1.0) * np.float32(255.0) + np.float32(0.5)).astype(np.uint8)
         return rgb
 
