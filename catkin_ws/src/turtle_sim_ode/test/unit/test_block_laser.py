@@ -66,3 +66,19 @@ def test_noise_spares_points_at_the_maximum() -> None:
     points, _ = block_points(ranges, config, count)
     assert calls == [(6, 3), (9,)]  # 6 points off the maximum, every intensity
     assert np.isinf(points[2]).any()  # 0.05 is below range min 0.1: -inf
+
+
+def test_the_ray_shape_ranges_are_without_the_sensor_noise() -> None:
+    """RaySensor adds <ray><noise> to its scan message; gazebo_ros_block_laser's PutLaserData reads the ray shape
+    (LaserShape()->GetRange), which has none: hits just past range min stay finite and within the range."""
+    noisy = BLOCK_SDF.replace(
+        "</range>", "</range><noise><type>gaussian</type><mean>0</mean><stddev>0.5</stddev></noise>"
+    )
+    sim = Simulation()
+    sim.spawn_sdf("bot", noisy)
+    sim.spawn_sdf("wall", WALL_SDF, (1.6, 0.0, 2.0, 0, 0, 0))
+    (config,) = sim.plugins["bot"].configs
+    lidar = MultiBeamLidar(sim.physics, sim.models["bot"], config)
+    shape = lidar.ranges(noisy=False)
+    assert shape[1, 1] == pytest.approx(1.5) and np.all((shape >= config.range_min) & (shape <= config.range_max))
+    assert not np.allclose(lidar.ranges(), shape)  # the scan message's ranges do carry the noise

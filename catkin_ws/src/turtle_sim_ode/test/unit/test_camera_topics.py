@@ -149,7 +149,8 @@ def test_camera_info_carries_the_plugins_baseline_distortion_and_lens_tags_as_ga
     info = camera_topics.camera_info(config, "optical", 79.5, 59.5)
     assert info.K == [100.0, 0.0, 81.5, 0.0, 100.0, 59.5, 0.0, 0.0, 1.0]
     assert info.P[3] == pytest.approx(-100.0 * 0.07)
-    assert list(info.D) == [0.1, 0.0, 0.3, 0.0, 0.5]  # k1, k2, k3, t1, t2: gazebo_ros's order
+    # D = {k1, k2, t1, t2, k3}: GazeboRosCameraUtils::Init (gazebo_plugins/src/gazebo_ros_camera_utils.cpp)
+    assert list(info.D) == [0.1, 0.0, 0.0, 0.5, 0.3]
     assert any("<focalLength> 100" in warning for warning in blocks.warnings), blocks.warnings
     plain = camera_topics.camera_info(
         read_sensors(WAFFLE.replace("<hackBaseline>0.07", "<hackBaseline>0")).cameras[0], "o", 79.5, 59.5
@@ -219,3 +220,37 @@ def test_bayer_mosaics_sample_the_channels_as_gazebo_does(encoding, layout) -> N
     for row in range(4):
         for column in range(6):
             assert mosaic[row, column] == value[layout[row % 2][column % 2]], (row, column)
+
+
+def test_a_triggered_frame_is_taken_at_its_step_and_sent_after_its_rendering_time(monkeypatch) -> None:
+    """GazeboRosTriggeredCamera: a frame a trigger. Here the frame shows (and is stamped with) the step after the
+    trigger and reaches subscribers once sim time has moved on by its rendering's wall time x the real-time factor
+    (ros/plugins/camera.py), as from a renderer running beside the physics."""
+    from turtle_sim_ode.ros.plugins import camera as camera_plugin
+
+    FakePublisher.made = {}
+    monkeypatch.setattr(periodic, "PackedPublisher", FakePublisher)
+    monkeypatch.setattr(camera_plugin, "subscriber", lambda *args: None)
+    monkeypatch.setattr(camera_plugin, "release", lambda handle: None)
+    clock = iter([10.0, 10.08, 20.0, 20.08])  # wall time: each rendering takes 80 ms
+    monkeypatch.setattr(camera_plugin.time, "monotonic", lambda: next(clock))
+    sim, camera = camera_world(kind="camera", plugin="libgazebo_ros_camera.so", width=16, height=12)
+    triggered = camera_plugin.TriggeredCameraPublisher(camera, sim.scene, "", real_time_factor=lambda: 0.5)
+    images = FakePublisher.made["cam/image_raw"]
+    images.connections = 1
+
+    def step(now: float) -> None:
+        triggered.publish(periodic.sim_stamp(now), now)
+
+    step(1.0)  # no trigger: nothing rendered
+    triggered._on_trigger(None)
+    triggered._on_trigger(None)
+    step(1.001)  # the first frame rendered, held until 1.001 + 0.08 x 0.5
+    step(1.002)  # the second
+    step(1.040)
+    assert triggered.rendered == 2 and images.messages == []
+    step(1.041)
+    step(1.042)
+    assert [message.header.stamp.to_sec() for message in images.messages] == pytest.approx([1.001, 1.002])
+    step(1.5)
+    assert triggered.rendered == 2 and len(images.messages) == 2  # a frame a trigger

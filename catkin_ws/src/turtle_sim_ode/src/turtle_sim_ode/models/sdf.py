@@ -26,6 +26,7 @@ from turtle_sim_ode.models.lights import SUN, Light, parse_light
 from turtle_sim_ode.models.world_state import WorldState, parse_world_state
 from turtle_sim_ode.models.materials import RGB, rgb_of, sdf_visual_color
 from turtle_sim_ode.models.nested import flatten_nested_models, read_pose
+from turtle_sim_ode.models.textures import sdf_material_script
 from turtle_sim_ode.models.text import (
     ModelError,
     child_text,
@@ -373,7 +374,8 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
         if drawn_shape(visual, where, VISUAL_SHAPES, model.warnings):
             # A plane is drawn as the box it collides as, on moving links too.
             origin, geometry = _placed(visual, where, True, model.warnings)
-            link.visuals.append(Visual(visual_name, origin, geometry, sdf_visual_color(visual)))
+            texture = sdf_material_script(visual)
+            link.visuals.append(Visual(visual_name, origin, geometry, sdf_visual_color(visual), texture))
     surface: Dict[str, float] = {}
     for index, collision in enumerate(element.findall("collision")):
         collision_name = collision.get("name") or f"{name}_collision_{index}"

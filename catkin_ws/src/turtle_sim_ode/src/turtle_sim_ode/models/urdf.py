@@ -7,6 +7,7 @@ from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.materials import RGB, gazebo_material, urdf_named_materials, urdf_visual_color
 from turtle_sim_ode.models.text import ModelError, parse_xml, plugin_params, read_number, required_attribute
+from turtle_sim_ode.models.textures import MaterialScript
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.sanity import MAX_INERTIA, MAX_LENGTH, MAX_MASS, MIN_MASS
 
@@ -112,12 +113,14 @@ class Collision:
 @dataclass(frozen=True)
 class Visual:
     """What the cameras draw of a link (Gazebo's cameras see visuals, not collisions): ``origin`` in the link frame,
-    ``color`` from its own material (None: Gazebo's default grey). A mesh's file is read by the cameras."""
+    ``color`` from its own material (None: Gazebo's default grey), ``texture`` a material script's with an image
+    (models.textures). A mesh's file is read by the cameras."""
 
     name: str
     origin: Pose
     geometry: Geometry
     color: Optional[RGB] = None
+    texture: Optional[MaterialScript] = None
 
 
 @dataclass

@@ -33,8 +33,8 @@ POINT_FIELDS = [
 def camera_info(config: CameraConfig, frame: str, cx: float, cy: float) -> CameraInfo:
     """K and P of the pinhole the picture is rendered with (``config``'s size and FOV, principal point ``cx``, ``cy``),
     but where the plugin's tags say otherwise: gazebo_ros_camera_utils reports focalLength, Cx, Cy when not 0, Tx =
-    -fx hackBaseline, and D = distortionK1, K2, K3, T1, T2 (plumb_bob, in that order), though Gazebo's picture does
-    not follow them either."""
+    -fx hackBaseline, and D (plumb_bob: k1, k2, t1, t2, k3) from distortionK1, K2, T1, T2, K3, or with
+    <autoDistortion> from the lens (sensors.plugins.camera)."""
     f = config.info_focal_length or config.focal_length
     cx, cy = config.info_cx or cx, config.info_cy or cy
     info = CameraInfo()
@@ -173,19 +173,29 @@ class CameraPublisher(Periodic):
         return channel is not None and channel[0].get_num_connections() > 0
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        secs, nsecs = stamp.secs, stamp.nsecs
-        for channel in (self._info, self._depth_info):
-            if self._heard(channel):
-                channel[0].publish(channel[1], secs, nsecs)
-        image, depth, points = (self._heard(c) for c in (self._image, self._depth, self._points))
-        if not (image or depth or points):
-            return
+        self.send(stamp, self.render())
+
+    def render(self) -> Optional[Frame]:
+        """A frame of the world now, None while no image, depth image or cloud has a subscriber."""
+        if not any(self._heard(c) for c in (self._image, self._depth, self._points)):
+            return None
         if self._sun is not None:
             self._sensor.light_from(self._sun())
         frame: Frame = self._sensor.render(self._scene)
         self.rendered += 1
         for warning in self._scene.take_warnings():
             rospy.logwarn("camera %s: %s", self._sensor.config.camera_name, warning)
+        return frame
+
+    def send(self, stamp: rospy.Time, frame: Optional[Frame]) -> None:
+        """camera_info (and depth camera_info) to their subscribers, and the frame's image, depth image and cloud."""
+        secs, nsecs = stamp.secs, stamp.nsecs
+        for channel in (self._info, self._depth_info):
+            if self._heard(channel):
+                channel[0].publish(channel[1], secs, nsecs)
+        if frame is None:
+            return
+        image, depth, points = (self._heard(c) for c in (self._image, self._depth, self._points))
         if image:
             rgb = colour_image(frame.rgb, self._sensor.config.encoding)
             self._image[0].publish(self._image[1], secs, nsecs, rgb)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import random
 from dataclasses import dataclass
-from typing import Optional, Tuple
+from typing import List, Optional, Tuple
 
 import numpy as np
 
@@ -23,7 +23,9 @@ from turtle_sim_ode.sensors.mounted import MountedSensor
 from turtle_sim_ode.sensors.ray_kernel import RayCaster, primitive_row
 from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
 from turtle_sim_ode.sensors.raycast import Primitive, hit_plane, hit_triangle, mesh_triangles
-from turtle_sim_ode.sensors.scene import Scene
+from turtle_sim_ode.sensors.distortion import DistortionMap
+from turtle_sim_ode.sensors.scene import Scene, TexturedRow
+from turtle_sim_ode.sensors.texturing import apply_textures
 
 # Gazebo's defaults: the scene's background, the ground_plane model's material, the sun model's direction.
 SKY_COLOR: RGB = (0.7, 0.7, 0.7)
@@ -71,6 +73,8 @@ class CameraSensor(MountedSensor):
         v = (np.arange(height) - self.cy) / self.focal_length  # y / z of each row
         self._u, self._v = u, v
         self._sky = sky if sky is not None else SKY_COLOR
+        lens = config.lens
+        self._distortion = None if lens.identity else DistortionMap.of(width, height, lens, config.border_crop)
         self.light_from(sun_direction)
         lib = ray_kernel_library() if ray_kernel else None
         self._caster = RayCaster(lib, width, height, threads) if lib is not None else None
@@ -132,12 +136,13 @@ class CameraSensor(MountedSensor):
         """Cast every pixel's ray at what ``scene`` draws of the world (the camera's own model aside) and the ground."""
         config = self.config
         origin, rotation = self.optical_pose()
-        table, meshes = scene.drawables(self.physics, self.model)
+        textured: List[TexturedRow] = []
+        table, meshes = scene.drawables(self.physics, self.model, textured)
         ground = self.physics.ground if self.physics.has_ground else None
         if self._caster is not None:
             # Near to far, the ground last: a farther surface then fails the depth test before it is shaded.
             near_first = table[np.argsort(((table[:, 1:4] - origin) ** 2).sum(axis=1), kind="stable")]
-            _, depth, rgb = self._caster.render(
+            depth64, depth, rgb = self._caster.render(
                 near_first if ground is None else np.vstack((near_first, primitive_row(ground, GROUND_COLOR))),
                 meshes,
                 origin,
@@ -149,10 +154,7 @@ class CameraSensor(MountedSensor):
                 AMBIENT,
                 self._sky,
             )
-            if config.noise_stddev > 0 or config.noise_mean != 0:
-                noisy = rgb / 255.0 + self._rng.normal(config.noise_mean, config.noise_stddev, rgb.shape)
-                rgb = (np.clip(noisy, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
-            return Frame(rgb, depth, (origin, rotation))
+            return Frame(self._finish(rgb, depth64, textured, origin, rotation), depth, (origin, rotation))
         height, width = config.height, config.width
         dirs = self._optical_dirs @ rotation.T  # world directions (H, W, 3)
         distance = np.full((height, width), np.inf)
@@ -201,10 +203,32 @@ class CameraSensor(MountedSensor):
         missed = ~(depth <= config.far)
         shade[missed] = self._sky
         depth[missed] = np.nan
-        if config.noise_stddev > 0 or config.noise_mean != 0:
-            shade += self._rng.normal(config.noise_mean, config.noise_stddev, shade.shape)
         rgb = (np.clip(shade, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
-        return Frame(rgb, depth.astype(np.float32), (origin, rotation))
+        return Frame(self._finish(rgb, depth, textured, origin, rotation), depth.astype(np.float32), (origin, rotation))
+
+    def _finish(
+        self,
+        rgb: np.ndarray,
+        depth: np.ndarray,
+        textured: List[TexturedRow],
+        origin: np.ndarray,
+        rotation: np.ndarray,
+    ) -> np.ndarray:
+        """The pinhole picture ``rgb`` (depth: optical z, float64) with its textures, lens distortion and noise."""
+        config = self.config
+        if textured:
+            apply_textures(rgb, depth, textured, origin, rotation, (self._u, self._v), self._pixel_box)
+        if self._distortion is not None:
+            rgb = self._distortion.apply(rgb)
+        if config.noise_stddev > 0 or config.noise_mean != 0:
+            # One sample a pixel, added to each of its channels (0..1), as gazebo-classic's ImageGaussianNoiseModel
+            # shader adds it; float32 (a 640 x 480 frame's noise in a few ms, not tens).
+            noise = self._rng.standard_normal(rgb.shape[:2] + (1,), dtype=np.float32)
+            noisy = rgb * np.float32(1.0 / 255.0) + (
+                noise * np.float32(config.noise_stddev) + np.float32(config.noise_mean)
+            )
+            rgb = (np.clip(noisy, 0.0, 1.0) * np.float32(255.0) + np.float32(0.5)).astype(np.uint8)
+        return rgb
 
     def depth_image(self, frame: Frame) -> np.ndarray:
         """The depth camera plugins' depth image: metres within (cutoff, cutoff_max), NaN elsewhere (float32)."""

@@ -85,7 +85,9 @@ class MultiBeamLidar(MountedSensor):
             rows.append(primitive_row(self.physics.ground, NO_COLOUR))
         return np.array(rows), meshes
 
-    def ranges(self) -> np.ndarray:
+    def ranges(self, noisy: bool = True) -> np.ndarray:
+        """The scan; ``noisy``: with the sensor's ``<ray><noise>`` (Gazebo's RaySensor adds it to the ranges of its
+        scan message; its ray shape, which gazebo_ros_block_laser reads, stays without: pass False)."""
         config = self.config
         origin, rotation = self.pose()
         directions = self._local.reshape(-1, 3) @ rotation.T
@@ -97,7 +99,7 @@ class MultiBeamLidar(MountedSensor):
         else:
             distance = self._numpy_rays(origin, directions, table, meshes)
         distance[~(distance <= config.range_max)] = config.range_max
-        if config.noise_stddev > 0 or config.noise_mean != 0:
+        if noisy and (config.noise_stddev > 0 or config.noise_mean != 0):
             distance += self._rng.normal(config.noise_mean, config.noise_stddev, distance.shape)
         return distance.reshape(config.vertical_samples, config.samples)
 

@@ -21,6 +21,7 @@ from turtle_sim_ode.models.builder import BuiltModel, pose_transform, quat_matri
 from turtle_sim_ode.models.materials import DEFAULT_COLOR, RGB
 from turtle_sim_ode.models.meshes import MeshFiles, mesh_file, scaled_mesh
 from turtle_sim_ode.models.resources import ResourcePaths
+from turtle_sim_ode.models.textures import MaterialScript, read_texture
 from turtle_sim_ode.models.urdf import Mesh, Visual
 from turtle_sim_ode.physics.trimesh import MeshGeom
 from turtle_sim_ode.physics.world import PhysicsWorld
@@ -42,8 +43,12 @@ def _placed(local: np.ndarray, at: int, positions: np.ndarray, rotations: np.nda
     return placed
 
 
-# A visual posed in its link: a primitive's row (shape_row) and None, or a mesh's pose (mesh_pose) and its arrays.
-Part = Tuple[np.ndarray, Optional[Tuple[np.ndarray, np.ndarray]]]
+# A visual posed in its link: a primitive's row (shape_row) and None, or a mesh's pose (mesh_pose) and its arrays;
+# and a textured primitive's image (drawn white by the ray casters, the texture applied after: sensors.texturing).
+Part = Tuple[np.ndarray, Optional[Tuple[np.ndarray, np.ndarray]], Optional[np.ndarray]]
+# A primitive's row posed in the world and its texture image.
+TexturedRow = Tuple[np.ndarray, np.ndarray]
+WHITE: RGB = (1.0, 1.0, 1.0)
 
 
 @dataclass
@@ -58,6 +63,7 @@ class _View:
     mesh_poses: np.ndarray = field(default_factory=lambda: np.zeros((0, POSE_COLUMNS + 3)))
     mesh_links: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
     mesh_arrays: List[Tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    textures: Dict[int, np.ndarray] = field(default_factory=dict)  # by index in rows
     colours: Dict[ode.GeomObject, RGB] = field(default_factory=dict)
     hidden: Set[ode.GeomObject] = field(default_factory=set)
     files: Set[str] = field(default_factory=set)  # the mesh files its visuals were drawn from
@@ -79,8 +85,10 @@ class _View:
         poses: List[np.ndarray] = []
         mesh_links: List[int] = []
         for index, parts in enumerate(links.values()):
-            for row, mesh in parts:
+            for row, mesh, texture in parts:
                 if mesh is None:
+                    if texture is not None:
+                        self.textures[len(rows)] = texture
                     rows.append(row)
                     row_links.append(index)
                 else:
@@ -91,9 +99,11 @@ class _View:
         self.mesh_poses = np.array(poses).reshape(-1, POSE_COLUMNS + 3)
         self.mesh_links = np.array(mesh_links, dtype=int)
 
-    def draw(self, model: BuiltModel, tables: List[np.ndarray], meshes: List[MeshItem]) -> None:
-        """Append the visuals, posed in the world now, to ``tables`` and ``meshes``: Python work per link, numpy
-        work per visual."""
+    def draw(
+        self, model: BuiltModel, tables: List[np.ndarray], meshes: List[MeshItem], textured: List[TexturedRow]
+    ) -> None:
+        """Append the visuals, posed in the world now, to ``tables``, ``meshes`` and (the textured primitives)
+        ``textured``: Python work per link, numpy work per visual."""
         if not self.links:
             return
         transforms = [model.link_transform(link) for link in self.links]
@@ -101,6 +111,7 @@ class _View:
         rotations = np.array([quat_matrix(quaternion) for _, quaternion in transforms])
         if len(self.rows):
             tables.append(_placed(self.rows, 1, positions[self.row_links], rotations[self.row_links]))
+            textured.extend((tables[-1][index], texture) for index, texture in self.textures.items())
         if self.mesh_arrays:
             poses = _placed(self.mesh_poses, 0, positions[self.mesh_links], rotations[self.mesh_links])
             meshes.extend((pose,) + arrays for pose, arrays in zip(poses, self.mesh_arrays))
@@ -116,6 +127,7 @@ class Scene:
         self._views: Dict[BuiltModel, _View] = {}
         self._warnings: List[str] = []
         self._files: MeshFiles = {}  # visual mesh files read, by resolved path; those of live models are kept
+        self._textures: Dict[Tuple[MaterialScript, Optional[str]], np.ndarray] = {}  # images read, by material
 
     def known_files(self) -> List[str]:
         """The visual mesh files read already (resolved paths)."""
@@ -162,7 +174,10 @@ class Scene:
             position, quaternion = pose_transform(visual.origin)
             rotation = np.ravel(quat_matrix(quaternion))
             if not isinstance(visual.geometry, Mesh):
-                parts.append((visual_row(visual.geometry, position, rotation, colour), None))
+                texture = self._texture(model, link, visual)
+                if texture is not None:
+                    colour = WHITE
+                parts.append((visual_row(visual.geometry, position, rotation, colour), None, texture))
                 continue
             what = f"model '{model.name}' link '{link}' visual '{visual.name}' mesh '{visual.geometry.uri}'"
             try:
@@ -172,8 +187,25 @@ class Scene:
                 self._warnings.append(f"{what}: {error}: the cameras draw link '{link}' from its collisions")
                 return []
             files.add(self.resources.resolve(visual.geometry.uri, model.robot.base))  # type: ignore[union-attr]
-            parts.append((mesh_pose(position, rotation, colour), (vertices, faces.astype(np.uint32))))
+            parts.append((mesh_pose(position, rotation, colour), (vertices, faces.astype(np.uint32)), None))
         return parts
+
+    def _texture(self, model: BuiltModel, link: str, visual: Visual) -> Optional[np.ndarray]:
+        """The image of the visual's material script, read once per material; None where it has none or it cannot
+        be read (with a warning: the visual is drawn in its colour)."""
+        if visual.texture is None or self.resources is None:
+            return None
+        key = (visual.texture, model.robot.base)
+        if key not in self._textures:
+            try:
+                self._textures[key] = read_texture(self.resources, visual.texture, model.robot.base)
+            except ValueError as error:  # ModelError, ResourceError
+                self._warnings.append(
+                    f"model '{model.name}' link '{link}' visual '{visual.name}' material '{visual.texture.name}': "
+                    f"{error}: drawn in its colour, without the texture"
+                )
+                return None
+        return self._textures[key]
 
     def _current(self, camera_model: BuiltModel) -> List[Tuple[BuiltModel, _View]]:
         """The views of every model but ``camera_model``'s, prepared where new; those of models gone are dropped."""
@@ -193,9 +225,12 @@ class Scene:
             found.append((model, view))
         return found
 
-    def drawables(self, physics: PhysicsWorld, camera_model: BuiltModel) -> Tuple[np.ndarray, List[MeshItem]]:
+    def drawables(
+        self, physics: PhysicsWorld, camera_model: BuiltModel, textured: Optional[List[TexturedRow]] = None
+    ) -> Tuple[np.ndarray, List[MeshItem]]:
         """What a camera on ``camera_model`` draws now, its own model and the ground plane aside: the primitive
-        table (N, STRIDE) and the meshes."""
+        table (N, STRIDE) and the meshes; ``textured`` gets the textured primitives' rows (in the table too, white)
+        and images."""
         views = self._current(camera_model)
         drawn_tables: List[np.ndarray] = []
         drawn_meshes: List[MeshItem] = []
@@ -204,8 +239,9 @@ class Scene:
                 continue
             tables: List[np.ndarray] = []
             meshes: List[MeshItem] = []
+            textures: List[TexturedRow] = []
             try:
-                view.draw(model, tables, meshes)
+                view.draw(model, tables, meshes, textures)
             except Exception as error:  # drawn from its collisions, from this rendering on
                 self._warnings.append(
                     f"model '{model.name}' visuals cannot be drawn ({type(error).__name__}: {error}): the cameras "
@@ -216,6 +252,8 @@ class Scene:
                 continue
             drawn_tables += tables
             drawn_meshes += meshes
+            if textured is not None:
+                textured += textures
         colours: Dict[ode.GeomObject, RGB] = {}
         hidden: Set[ode.GeomObject] = set()
         for _, view in views:

@@ -1,5 +1,7 @@
 """gazebo_ros_block_laser's topic (sensors.plugins.block_laser): sensor_msgs/PointCloud with one unnamed channel of
-intensities, in frameName under the tf_prefix parameter, at the sensor's rate, only while subscribed."""
+intensities, in frameName under the tf_prefix parameter, at the sensor's rate, only while subscribed. The ranges are
+the ray shape's (LaserShape()->GetRange in PutLaserData): without the sensor's <ray><noise>, which Gazebo adds to its
+own scan message only."""
 from __future__ import annotations
 
 from typing import List
@@ -29,7 +31,7 @@ class BlockLaserPublisher(Periodic):
     def publish(self, stamp: rospy.Time, now: float) -> None:
         if not self._pub.get_num_connections():
             return
-        points, intensities = block_points(self._lidar.ranges(), self._config, self._rng.normal)
+        points, intensities = block_points(self._lidar.ranges(noisy=False), self._config, self._rng.normal)
         message = PointCloud(points=[Point32(*point) for point in points.tolist()])
         message.channels = [ChannelFloat32(values=intensities.tolist())]
         message.header.stamp, message.header.frame_id = stamp, self._frame

@@ -1,10 +1,12 @@
 """The camera plugins' topics (sensors.plugins.camera): ros.camera_topics's CameraPublisher of the sensor; for
-libgazebo_ros_triggered_camera.so one frame (image and camera_info) at the step after each std_msgs/Empty on
-``triggerTopicName`` in the camera's namespace (GazeboRosTriggeredCamera: triggers count, a frame takes one)."""
+libgazebo_ros_triggered_camera.so one frame (image and camera_info) for each std_msgs/Empty on ``triggerTopicName`` in
+the camera's namespace (GazeboRosTriggeredCamera: triggers count, a frame takes one), see TriggeredCameraPublisher."""
 from __future__ import annotations
 
 import threading
-from typing import Callable, List, Optional, Tuple
+import time
+from collections import deque
+from typing import Callable, Deque, List, Optional, Tuple
 
 import rospy
 from std_msgs.msg import Empty
@@ -12,24 +14,32 @@ from std_msgs.msg import Empty
 from turtle_sim_ode.ros.camera_topics import CameraPublisher
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, subscriber
 from turtle_sim_ode.ros.wire import release
-from turtle_sim_ode.sensors.camera import CameraSensor
+from turtle_sim_ode.sensors.camera import CameraSensor, Frame
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.plugins.multicamera import MultiCameraConfig
 from turtle_sim_ode.sensors.scene import Scene
 
 
 class TriggeredCameraPublisher(CameraPublisher):
+    """A frame per trigger, rendered at the first step after it (the picture and stamp of that step, sim time
+    standing still meanwhile) and published once sim time has moved on by as long as the rendering took (its wall
+    time x the real-time factor; 1 when unpaced): Gazebo renders beside its physics, so a frame reaches subscribers
+    that much sim time after its stamp."""
+
     def __init__(
         self,
         sensor: CameraSensor,
         scene: Scene,
         namespace: str,
         sun: Optional[Callable[[], Optional[Tuple[float, float, float]]]] = None,
+        real_time_factor: Callable[[], float] = lambda: 1.0,
     ) -> None:
         super().__init__(sensor, scene, namespace, sun)
         self._period = 0.0  # looks for a trigger at every step; renders only when triggered
+        self._real_time_factor = real_time_factor
         self._lock = threading.Lock()
         self._triggers = 0
+        self._held: Deque[Tuple[float, rospy.Time, Optional[Frame]]] = deque()  # (due sim time, stamp, frame)
         self._trigger_sub = subscriber(self.topic(sensor.config.trigger_topic), Empty, self._on_trigger, 1)
 
     def _on_trigger(self, _message: Empty) -> None:
@@ -37,11 +47,21 @@ class TriggeredCameraPublisher(CameraPublisher):
             self._triggers += 1
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
+        while self._held and self._held[0][0] <= now + 1e-9:
+            _, taken, frame = self._held.popleft()
+            self.send(taken, frame)
         with self._lock:
             if not self._triggers:
                 return
             self._triggers -= 1
-        super().publish(stamp, now)
+        started = time.monotonic()
+        frame = self.render()
+        rtf = self._real_time_factor()
+        self._held.append((now + (time.monotonic() - started) * (rtf if rtf > 0 else 1.0), stamp, frame))
+
+    def restart(self, now: float) -> None:
+        super().restart(now)
+        self._held.clear()  # reset_simulation: frames of the old time are dropped
 
     def close(self) -> None:
         release(self._trigger_sub)
@@ -51,9 +71,11 @@ class TriggeredCameraPublisher(CameraPublisher):
 def interfaces(context: ModelContext, config: CameraConfig) -> List[Periodic]:
     sim = context.sim
     sensor = CameraSensor(sim.physics, context.model, config, sun_direction=sim.light_direction, sky=sim.sky_colour)
-    kind = TriggeredCameraPublisher if config.triggered else CameraPublisher
     # the world's lights as the light services leave them, read at each frame
-    return [kind(sensor, sim.scene, context.namespace, lambda: sim.light_direction)]
+    if config.triggered:
+        rtf = lambda: sim.real_time_factor  # noqa: E731
+        return [TriggeredCameraPublisher(sensor, sim.scene, context.namespace, lambda: sim.light_direction, rtf)]
+    return [CameraPublisher(sensor, sim.scene, context.namespace, lambda: sim.light_direction)]
 
 
 def multicamera_interfaces(context: ModelContext, config: MultiCameraConfig) -> List[Periodic]:

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import List, Tuple
+from typing import List, Optional, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
+from turtle_sim_ode.sensors.distortion import LensDistortion
 from turtle_sim_ode.sensors.sensor_element import int_at, number_at, rate_at, sensor_pose, sensor_what
 
 # gazebo_ros_triggered_camera: a frame for each message on <triggerTopicName> (image_trigger), as camera_utils has it.
@@ -68,12 +69,15 @@ class CameraConfig:
     pose: Tuple[float, float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     robot_namespace: str = ""
     # What gazebo_ros_camera_utils puts in camera_info from the plugin's tags (the picture does not change with them):
-    # focalLength, Cx, Cy where not 0 (0: ours), P[3] = -fx hackBaseline, D = distortionK1, K2, K3, T1, T2 in that order.
+    # focalLength, Cx, Cy where not 0 (0: ours), P[3] = -fx hackBaseline, D = distortionK1, K2, T1, T2, K3 (in that
+    # order; with <autoDistortion> the lens's k1, k2, p1, p2, k3 instead).
     info_focal_length: float = 0.0
     info_cx: float = 0.0
     info_cy: float = 0.0
     hack_baseline: float = 0.0
     distortion: Tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)
+    lens: LensDistortion = LensDistortion()  # <camera><distortion>: drawn in the picture (sensors.distortion)
+    border_crop: bool = True  # <borderCrop>: GazeboRosCameraUtils passes it to Distortion::SetCrop
     triggered: bool = False  # libgazebo_ros_triggered_camera.so: frames only when triggered
     trigger_topic: str = "image_trigger"
 
@@ -138,9 +142,14 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ca
             f"{what}: <focalLength> {given_focal:g} is not width / (2 tan(horizontal_fov / 2)) = {computed_focal:g}: "
             "camera_info reports it, the picture is rendered with the FOV (as in Gazebo)"
         )
-    distortion = tuple(
-        tag(name) for name in ("distortionK1", "distortionK2", "distortionK3", "distortionT1", "distortionT2")
-    )
+    lens = lens_distortion(camera, what, depth, warnings)
+    if read_bool(params.get("autoDistortion"), f"{what} <autoDistortion>"):
+        distortion = lens.ros_coefficients()
+    else:
+        distortion = tuple(
+            tag(name) for name in ("distortionK1", "distortionK2", "distortionT1", "distortionT2", "distortionK3")
+        )
+    border_crop = read_bool(params.get("borderCrop") or "true", f"{what} <borderCrop>")
     # The depth plugins' own defaults for the image topics (gazebo_ros_openni_kinect / _depth_camera).
     image_topic, info_topic = ("ir/image_raw", "ir/camera_info") if depth else ("image_raw", "camera_info")
     return CameraConfig(
@@ -174,7 +183,36 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ca
         info_cy=tag("Cy"),
         hack_baseline=tag("hackBaseline"),
         distortion=distortion,  # type: ignore[arg-type]
+        lens=LensDistortion() if depth else lens,
+        border_crop=border_crop,
     )
+
+
+def read_bool(text: Optional[str], what: str) -> bool:
+    """An SDF bool (true/false/1/0, absent: false); ModelError naming ``what`` otherwise."""
+    value = (text or "false").strip().lower()
+    if value not in ("true", "false", "1", "0"):
+        raise ModelError(f"{what} must be true or false, got '{text}'")
+    return value in ("true", "1")
+
+
+def lens_distortion(camera: Optional[Element], what: str, depth: bool, warnings: List[str]) -> LensDistortion:
+    """``<camera><distortion>`` (absent: none). A depth camera's is not drawn (a warning says so)."""
+    element = None if camera is None else camera.find("distortion")
+    if element is None:
+        return LensDistortion()
+    center = (child_text(element, "center") or "0.5 0.5").split()
+    try:
+        centre = (float(center[0]), float(center[1]))
+    except (ValueError, IndexError):
+        raise ModelError(f"{what} <distortion><center> must be two numbers, got '{' '.join(center)}'") from None
+    if not all(math.isfinite(value) for value in centre):
+        raise ModelError(f"{what} <distortion><center> must be finite, got {centre}")
+    where = f"{what} <distortion>"
+    lens = LensDistortion(*(number_at(element, name, 0.0, where) for name in ("k1", "k2", "k3", "p1", "p2")), centre)
+    if depth and not lens.identity:
+        warnings.append(f"{what}: <distortion> is not drawn in a depth camera's pictures here")
+    return lens
 
 
 def without_plugin(link: str, sensor: Element, warnings: List[str]) -> None:
