@@ -141,9 +141,9 @@ def test_10000_links_are_refused_quickly_with_the_limit(parse, text, kind):
         with pytest.raises(ModelError):
             parse(text)
 
-    # Counted before building: the refusal costs what reading the XML and freeing it cost (1.3 x reading it here);
-    # building the 10000 links would double it.
-    assert_within(best_seconds(refusal), best_seconds(lambda: parse_xml(text, kind)), 1.7, "refusing 10000 links")
+    # Counted before building: the refusal costs about what reading the XML costs (1.1 x for SDF, 1.6 x for URDF
+    # here); building the links as well would take 16 x and 4.7 x.
+    assert_within(best_seconds(refusal, 5), best_seconds(lambda: parse_xml(text, kind), 5), 3, "refusing 10000 links")
 
 
 def test_too_many_collisions_are_refused():
