@@ -10,7 +10,7 @@ from conftest import run_bench
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 TIMEOUT_S = 600  # --quick takes about 90 s on 2 cores; a busy machine may take longer
-SECTIONS = ("physics_only", "full_node", "real_time", "launch", "cameras", "ros_control")
+SECTIONS = ("physics_only", "full_node", "real_time", "launch", "cameras", "ros_control", "scaling")
 # 0 = unthrottled; linearity needs three robot counts, --quick has two ([] stands for any list index)
 MAY_BE_ZERO_OR_NONE = {
     "full_node.real_time_factor",
@@ -63,7 +63,7 @@ def test_machine_peer_and_targets_are_recorded(results):
     machine = results["machine"]
     assert machine["nproc"] >= 1 and machine["cpu_model"] and machine["python"]
     assert results["peer"]["status"] == "skipped"
-    assert len(results["targets"]) == 10
+    assert len(results["targets"]) == 16
 
 
 def test_camera_runs_render_at_their_rate_only_when_watched(results):

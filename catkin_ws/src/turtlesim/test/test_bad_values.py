@@ -18,6 +18,7 @@ from geometry_msgs.msg import Twist, Vector3
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from rosgraph_msgs.msg import Log
+from workspace_testing.timing import assert_within, best_seconds, timed
 
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute, TeleportRelative
@@ -55,7 +56,8 @@ class BadValues(unittest.TestCase):
     @classmethod
     def setUpClass(cls) -> None:
         rospy.init_node("bad_values")
-        cls.limit = rospy.get_param("~answer_time_limit")
+        cls.limit = rospy.get_param("~wait_limit")
+        cls.ratio = rospy.get_param("~answer_time_ratio")
         cls.examples = rospy.get_param("~examples")
         for name in ("spawn", "kill", "turtle1/teleport_absolute", "turtle1/teleport_relative"):
             rospy.wait_for_service(name, 30)
@@ -71,15 +73,17 @@ class BadValues(unittest.TestCase):
         deadline = time.monotonic() + 20
         while cls.cmd.get_num_connections() == 0 and time.monotonic() < deadline:
             rospy.rostime.wallsleep(0.02)  # rospy offers no event for a new subscriber
+        pose = cls.poses.wait_next(1, cls.limit)
+        cls.reference = best_seconds(lambda: cls.teleport(pose.x, pose.y, pose.theta))
 
     def alive(self) -> None:
-        """The node answers within the limit and /turtle1/pose comes on, finite and on the canvas."""
-        started = time.monotonic()
+        """The node answers within answer_time_ratio times a reference call of the same run, and /turtle1/pose comes
+        on, finite and on the canvas."""
         pose = self.poses.wait_next(3, self.limit)
         state = (pose.x, pose.y, pose.theta, pose.linear_velocity, pose.angular_velocity)
         self.assertTrue(all(math.isfinite(v) for v in state), state)
-        self.teleport(pose.x, pose.y, pose.theta)  # a call that must be answered
-        self.assertLess(time.monotonic() - started, self.limit)
+        _, took = timed(lambda: self.teleport(pose.x, pose.y, pose.theta))  # a call that must be answered
+        assert_within(took, self.reference, self.ratio, "teleport_absolute")
 
     def refused(self, call, *args) -> str:
         with self.assertRaises(rospy.ServiceException) as raised:

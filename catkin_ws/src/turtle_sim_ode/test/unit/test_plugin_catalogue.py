@@ -8,7 +8,7 @@ import pytest
 from conftest import PACKAGE_ROOT
 
 from turtle_sim_ode.models.urdf import GazeboPlugin
-from turtle_sim_ode.ros.plugins import ADAPTERS, plugin_namespace
+from turtle_sim_ode.ros.plugins import ADAPTERS, GROUPED, plugin_namespace
 from turtle_sim_ode.sensors.config import read_sdf_sensors
 from turtle_sim_ode.sensors.plugins import SENSOR_PLUGINS
 from turtle_sim_ode.world.plugins import MODEL_PLUGINS, P3D, read_plugins
@@ -35,7 +35,7 @@ def test_every_plugin_read_at_spawn_has_a_ros_adapter() -> None:
     sim = Simulation()
     sim.spawn_urdf("burger", BURGER_URDF)
     configs = sim.plugins["burger"].configs
-    assert configs and all(type(config) in ADAPTERS for config in configs), configs
+    assert configs and all(type(config) in ADAPTERS or type(config) in GROUPED for config in configs), configs
 
 
 def test_a_ray_sensor_with_an_unknown_plugin_is_named_in_the_one_warning() -> None:

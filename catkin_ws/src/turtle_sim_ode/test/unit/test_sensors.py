@@ -6,11 +6,11 @@ import math
 import random
 import re
 import statistics
-import time
 from typing import List, Tuple
 
 import pytest
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF, TurtleSim
+from workspace_testing.timing import assert_within, best_seconds
 
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.sensors import laser as sensors
@@ -231,7 +231,8 @@ def test_rays_make_no_contacts_and_leave_the_step_alone() -> None:
 
 
 def test_scan_cost() -> None:
-    """A 360-beam scan among walls on every side stays cheap (measured in the report)."""
+    """A 360-beam scan among walls on every side costs under half the 200 steps between two scans at 5 Hz (about a
+    quarter here): both timed in this run."""
     sim = TurtleSim()
     for name, size, xyz in (
         ("north", (0.2, 4.0, 0.5), (1.5, 0.0, 0.25)),
@@ -244,14 +245,11 @@ def test_scan_cost() -> None:
     sim.settle()
     scanner = LaserScanner(sim.physics, sim.model, "base_scan", laser_config())
     assert all(math.isfinite(r) for r in scanner.scan())
-    best = math.inf
-    for _ in range(3):
-        start = time.perf_counter()
-        for _ in range(20):
-            scanner.scan()
-        best = min(best, (time.perf_counter() - start) / 20)
-    print(f"360-beam scan, walls all around: {best * 1e6:.0f} us")
-    assert best < 0.02
+    # Windows of about the same length, the best of five each: a busy machine slows the best of both alike.
+    scan = best_seconds(lambda: [scanner.scan() for _ in range(20)], 5) / 20
+    step = best_seconds(lambda: [sim.sim.step() for _ in range(1000)], 5) / 1000
+    print(f"360-beam scan, walls all around: {scan * 1e6:.0f} us, {scan / step:.0f} steps")
+    assert_within(scan, step, 100, "a 360-beam scan")
 
 
 # --- IMU ------------------------------------------------------------------------------------

@@ -4,10 +4,11 @@ as OnScan lays it out."""
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
+from conftest import TurtleSim
+from workspace_testing.timing import assert_within, best_seconds
 
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.sensors.config import read_sdf_sensors
@@ -122,11 +123,10 @@ def test_organised_cloud_keeps_every_ray() -> None:
     assert np.all(points["ring"] == np.arange(16)) and np.isnan(points["x"]).any()
 
 
-def test_a_vlp16_scan_takes_a_few_milliseconds() -> None:
-    """16 x 1800 rays at 10 Hz: a scan must cost well under the 100 ms of sim time between scans."""
+def test_a_vlp16_scan_costs_about_the_turtlebot_steps_between_two_scans() -> None:
+    """16 x 1800 rays at 10 Hz: a scan (rays and cloud) costs about what the 100 physics steps of a TurtleBot between
+    two scans cost (1.5 x here), both timed in this run: a VLP-16 on a robot keeps a good part of its rate."""
     lidar, cloud = scanner()
-    lidar.ranges()
-    started = time.perf_counter()
-    for _ in range(5):
-        cloud.points(lidar.ranges())
-    assert (time.perf_counter() - started) / 5 < 0.05
+    scan = best_seconds(lambda: cloud.points(lidar.ranges()), 5)
+    turtlebot = TurtleSim()
+    assert_within(scan, best_seconds(lambda: [turtlebot.sim.step() for _ in range(100)], 5), 4, "a VLP-16 scan")

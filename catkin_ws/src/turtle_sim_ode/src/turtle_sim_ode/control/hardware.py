@@ -128,6 +128,8 @@ class DefaultRobotHWSim(RobotHW):
                     self.pids[spec.name] = Pid(read_gains(gains))
                 except ControllerError as error:
                     self.warnings.append(str(error))
+        # Each joint with its simulated joint, looked up once: read and write run every step.
+        self._pairs = [(joint, self.sim_joints[name]) for name, joint in self.joints.items()]
         self.read()
         for joint in self.joints.values():
             joint.command = joint.position if joint.interface == POSITION else 0.0
@@ -138,16 +140,15 @@ class DefaultRobotHWSim(RobotHW):
         return base + "_PID" if name in self.pids else base
 
     def read(self) -> None:
-        for name, joint in self.joints.items():
-            sim = self.sim_joints[name]
+        for joint, sim in self._pairs:
             joint.position = sim.position()
             joint.velocity = sim.velocity()
 
     def write(self, period: float) -> None:
         """Saturate the commands to the joint limits (joint_limits_interface's saturation handles) and apply
         them for the coming step."""
-        for name, joint in self.joints.items():
-            sim, limits = self.sim_joints[name], joint.limits
+        for joint, sim in self._pairs:
+            name, limits = joint.name, joint.limits
             command = joint.command if math.isfinite(joint.command) else 0.0
             if joint.interface == EFFORT:
                 joint.effort = clamp(command, -limits.effort, limits.effort)

@@ -16,6 +16,7 @@ from __future__ import annotations
 import io
 import math
 import os
+import re
 import warnings
 from dataclasses import replace
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
@@ -32,6 +33,31 @@ from turtle_sim_ode.physics.trimesh import available as trimesh_available
 # More triangles than any collision mesh needs; more would cost seconds to build and every step after.
 MAX_TRIANGLES = 200_000
 Triangles = numpy.ndarray  # (N, 3, 3) float64: N triangles of three vertices
+# A Collada <triangles> or <polylist> start tag's count attribute (namespace prefix allowed).
+_DAE_COUNT = re.compile(rb"<(?:[\w.-]+:)?(?:triangles|polylist)\b[^>]*?\scount\s*=\s*[\"'](\d{1,18})[\"']")
+
+
+def _binary_stl_count(data: bytes) -> Optional[int]:
+    """A binary STL's facet count from its header, where the file is binary (see _stl)."""
+    if len(data) < 84:
+        return None
+    count = int.from_bytes(data[80:84], "little")
+    ascii_text = data.lstrip().startswith(b"solid")
+    if len(data) == 84 + 50 * count or (not ascii_text and len(data) > 84 + 50 * count):
+        return count
+    return None
+
+
+def _counted_triangles(data: bytes, extension: str) -> Tuple[int, bool]:
+    """The triangles a file holds, counted without reading its geometry, and whether that count is exact (else a
+    least): a binary STL's header count, an ASCII STL's facets, an OBJ's face lines, a Collada file's <triangles>
+    and <polylist> counts (a polygon is one triangle at least)."""
+    if extension == ".stl":
+        count = _binary_stl_count(data)
+        return (count, True) if count is not None else (data.count(b"endfacet"), True)
+    if extension == ".obj":
+        return data.count(b"\nf ") + data.count(b"\nf\t") + int(data[:2] in (b"f ", b"f\t")), False
+    return sum(int(count) for count in _DAE_COUNT.findall(data)), False
 
 
 def _stl(data: bytes, what: str) -> Triangles:
@@ -40,15 +66,15 @@ def _stl(data: bytes, what: str) -> Triangles:
         from stl import mesh as stl_mesh  # numpy-stl; imported when a model has an STL mesh
 
     ascii_text = data.lstrip().startswith(b"solid")
-    if len(data) >= 84:
+    # Binary, whatever its header says (some begin with "solid"); bytes after the facets are ignored, as
+    # STLLoader::ReadBinary reads the count's facets and stops.
+    count = _binary_stl_count(data)
+    if count is not None:
+        records = numpy.frombuffer(data, dtype=stl_mesh.Mesh.dtype, count=count, offset=84)
+        return numpy.array(records["vectors"], dtype=numpy.float64)
+    if len(data) >= 84 and not ascii_text:
         count = int.from_bytes(data[80:84], "little")
-        # Binary, whatever its header says (some begin with "solid"); bytes after the facets are ignored, as
-        # STLLoader::ReadBinary reads the count's facets and stops.
-        if len(data) == 84 + 50 * count or (not ascii_text and len(data) > 84 + 50 * count):
-            records = numpy.frombuffer(data, dtype=stl_mesh.Mesh.dtype, count=count, offset=84)
-            return numpy.array(records["vectors"], dtype=numpy.float64)
-        if not ascii_text:
-            raise ModelError(f"{what}: binary STL of {count} facets needs {84 + 50 * count} bytes, has {len(data)}")
+        raise ModelError(f"{what}: binary STL of {count} facets needs {84 + 50 * count} bytes, has {len(data)}")
     if not ascii_text:
         raise ModelError(f"{what}: not an STL file (neither binary nor ASCII)")
     try:
@@ -304,6 +330,10 @@ def read_mesh(data: bytes, name: str) -> Triangles:
     reader = _READERS.get(extension)
     if reader is None:
         raise ModelError(f"mesh '{name}': unsupported format (STL, OBJ and Collada .dae are read)")
+    counted, exact = _counted_triangles(data, extension)
+    if counted > MAX_TRIANGLES:  # refused before reading: a 64 MB file is counted in tens of milliseconds
+        at_least = "" if exact else "at least "
+        raise ModelError(f"mesh '{name}' has {at_least}{counted} triangles, more than the {MAX_TRIANGLES} allowed")
     try:
         with numpy.errstate(all="ignore"):  # overflow to inf is refused below, not warned of
             triangles = reader(data, f"mesh '{name}'")

@@ -81,6 +81,17 @@ class PackedPublisher:
     def get_num_connections(self) -> int:
         return self._pub.get_num_connections()
 
+    def heard(self) -> bool:
+        impl = self._pub.impl
+        return impl is not None and bool(impl.connections)
+
+    def on_subscribers_changed(self, changed: Callable[[], None]) -> None:
+        """Call ``changed()`` (from a rospy thread) whenever a subscriber comes or goes."""
+        listener = rospy.SubscribeListener()
+        listener.peer_subscribe = lambda *_: changed()  # type: ignore[assignment]
+        listener.peer_unsubscribe = lambda *_: changed()  # type: ignore[assignment]
+        self._pub.impl.add_subscriber_listener(listener)
+
     def publish(self, pack: Callable[..., Packed], *fields: Any) -> None:
         """Publish the message ``pack(seq, *fields)`` if anyone listens (nothing is packed otherwise); seq is the
         header seq rospy gives the topic's next message, as it would to a genpy message."""

@@ -78,6 +78,10 @@ class ImuSensor:
 
     def read(self, now: float) -> ImuReading:
         """The IMU's reading at sim time ``now`` (call after steps, e.g. at the publish rate)."""
+        return self.with_noise(self.exact(now))
+
+    def exact(self, now: float) -> ImuReading:
+        """``read`` without noise (covariances left out): what every IMU on the link reads, shared by ImuGroup."""
         _, (w, x, y, z) = self.model.link_transform(self.link)
         velocity, angular = self.model.link_twist(self.link)
         if self._last is not None and now > self._last[0]:
@@ -93,18 +97,22 @@ class ImuSensor:
         g = self.gravity
         a = self._acceleration
         proper = quat_rotate(to_link, (a[0] - g[0], a[1] - g[1], a[2] - g[2]))
-        rates = quat_rotate(to_link, angular)
-        orientation = (x, y, z, w)
+        return ImuReading(now, (x, y, z, w), quat_rotate(to_link, angular), proper)
+
+    def with_noise(self, exact: ImuReading) -> ImuReading:
+        """An exact reading with this IMU's noise and covariances."""
+        orientation = exact.orientation
         noise = self.noise
         if noise.orientation > 0:
+            x, y, z, w = orientation
             roll, pitch, yaw = self._noisy((0.0, 0.0, 0.0), noise.orientation)
             nw, nx, ny, nz = quat_multiply((w, x, y, z), quat_from_rpy(roll, pitch, yaw))
             orientation = (nx, ny, nz, nw)
         return ImuReading(
-            now,
+            exact.stamp,
             orientation,
-            self._noisy(rates, noise.angular_velocity),
-            self._noisy(proper, noise.linear_acceleration),
+            self._noisy(exact.angular_velocity, noise.angular_velocity),
+            self._noisy(exact.linear_acceleration, noise.linear_acceleration),
             list(self._covariances[0]),
             list(self._covariances[1]),
             list(self._covariances[2]),

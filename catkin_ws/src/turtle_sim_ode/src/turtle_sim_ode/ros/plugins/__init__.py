@@ -2,10 +2,11 @@
 from the config its ROS-free module read (world.plugins, sensors.plugins). ``ADAPTERS`` maps a config's type to its
 module's ``interfaces(context, config)``; adding a plugin is a module and a line here.
 
-Each publisher keeps its own schedule in sim time; SimulatorNode calls publish_due() after every step."""
+Each publisher keeps its own schedule in sim time; SimulatorNode calls publish_due() after every step. A model's
+plugins of a kind in ``GROUPED`` are made together, so that many of them share one schedule and one reading."""
 from __future__ import annotations
 
-from typing import Callable, Dict, List, Optional
+from typing import Callable, Dict, List, Optional, Tuple
 
 from turtle_sim_ode.ros.periodic import Advertising, ModelContext, Periodic, TopicCheck
 from turtle_sim_ode.ros.plugins import (
@@ -66,7 +67,6 @@ ADAPTERS: Dict[type, Adapter] = {
     TricycleConfig: tricycle_drive.interfaces,
     GroundTruthConfig: p3d.interfaces,
     JointStatesConfig: joint_state_publisher.interfaces,
-    ImuConfig: imu.interfaces,
     LaserConfig: laser.interfaces,
     ContactConfig: bumper.interfaces,
     CameraConfig: camera.interfaces,
@@ -82,6 +82,12 @@ ADAPTERS: Dict[type, Adapter] = {
     VacuumGripperConfig: vacuum_gripper.interfaces,
     RosControlPluginConfig: ros_control.interfaces,
     ElevatorConfig: elevator.interfaces,
+}
+
+
+# Plugin kinds whose ROS side is made for all of a model's plugins of the kind at once (contexts, configs).
+GROUPED: Dict[type, Callable[[List[ModelContext], List[object]], List[Periodic]]] = {
+    ImuConfig: imu.grouped_interfaces,  # type: ignore[dict-item]
 }
 
 
@@ -106,9 +112,17 @@ def model_interfaces(
     Advertising.check, Advertising.opened = check_topic, []
     plugins = sim.plugins.get(name)
     try:
+        grouped: Dict[type, Tuple[List[ModelContext], List[object]]] = {}
         for config in plugins.configs if plugins is not None else []:
             context = ModelContext(name, sim, settings, tf_broadcaster, plugin_namespace(namespace, config))
-            interfaces += ADAPTERS[type(config)](context, config)
+            if type(config) in GROUPED:
+                contexts, configs = grouped.setdefault(type(config), ([], []))
+                contexts.append(context)
+                configs.append(config)
+            else:
+                interfaces += ADAPTERS[type(config)](context, config)
+        for kind, (contexts, configs) in grouped.items():
+            interfaces += GROUPED[kind](contexts, configs)
     except BaseException:
         for interface in interfaces:
             interface.close()
