@@ -89,7 +89,7 @@ class MeshCheck:
         if path not in self._verdicts:
             suffix = os.path.splitext(path)[1].lower()
             if suffix not in MESH_SUFFIXES:
-                self._verdicts[path] = f"{what}: the viewer draws {', '.join(MESH_SUFFIXES)} meshes, not '{suffix}'"
+                self._verdicts[path] = f"the viewer draws {', '.join(MESH_SUFFIXES)} meshes, not '{suffix}'"
             else:
                 try:
                     mesh_file(self.resources, mesh, base, what, {})
@@ -97,7 +97,7 @@ class MeshCheck:
                 except ValueError as error:  # ModelError: missing, unreadable, not parsed
                     self._verdicts[path] = str(error)
         if self._verdicts[path]:
-            raise ModelError(self._verdicts[path])
+            raise ModelError(f"{what}: {self._verdicts[path]}")
         return path
 
 
