@@ -8,7 +8,8 @@
 5. PyBullet (in a venv of its own under .cache/) on the same URDF: steps/s and the circle radius it drives;
 6. cameras (issue #15): an RGB-D camera's cost without ROS and in the full node, watched and nobody watching;
 7. lidar (issue #23): a VLP-16's (16 x 1800 rays at 10 Hz) and a 64-laser lidar's cost without ROS;
-8. ros_control (issue #24): a 1 kHz controller manager's cost in real-time factor, without ROS.
+8. ros_control (issue #24): a 1 kHz controller manager's cost in real-time factor, without ROS;
+9. viewer (issue #30): the node's RTF with a viewer's /gazebo/scene_markers subscriber over that without.
 
 Every ROS process runs against a master of its own on a free port and is stopped at the end, also on Ctrl-C, SIGTERM
 or error: SIGINT, then SIGKILL to its process group and to every process with its tag in the environment (roslaunch
@@ -27,7 +28,7 @@ from typing import Any, Callable, Dict, Optional, Sequence
 
 # This file parses the arguments and runs the sections; they are in scripts/lib: bench_physics (1), bench_node and
 # bench_probe (2-4), bench_peer (5), bench_camera and bench_node (6), bench_lidar (7), bench_control (8),
-# bench_report (targets, table), bench_plan (run sizes).
+# bench_viewer (9), bench_report (targets, table), bench_plan (run sizes).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
 from workspace_env import ensure_workspace_env  # noqa: E402
 
@@ -35,6 +36,7 @@ ensure_workspace_env(__file__, sys.argv[1:])  # run as the README shows it, the 
 from bench_camera import camera_cost  # noqa: E402
 from bench_lidar import lidar_cost  # noqa: E402
 from bench_control import ros_control_cost  # noqa: E402
+from bench_viewer import viewer_cost  # noqa: E402
 from bench_node import camera_node, full_node, launch_to_first_odom, real_time  # noqa: E402
 from bench_peer import peer  # noqa: E402
 from bench_physics import physics_only  # noqa: E402
@@ -93,6 +95,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         measure(results, "cameras", "6. cameras", lambda: cameras(plan, processes))
         measure(results, "lidar", "7. lidar", lambda: lidar_cost(plan.physics_steps, plan.physics_repeats))
         measure(results, "ros_control", "8. ros_control", lambda: ros_control_cost(plan))
+        measure(results, "viewer", "9. viewer", lambda: viewer_cost(plan, processes))
     close_machine(results, ticks_at_start)
     results["targets"] = targets(results)
     return write_report(results, table(results), args.json)

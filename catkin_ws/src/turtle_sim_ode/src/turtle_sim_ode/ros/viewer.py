@@ -13,7 +13,7 @@ import tempfile
 import threading
 import time
 from collections import deque
-from typing import Callable, Deque, Optional, Sequence, Tuple
+from typing import Callable, Deque, List, Optional, Sequence, Set, Tuple
 
 import rosgraph
 import rospy
@@ -23,7 +23,7 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 from turtle_sim_ode_msgs.srv import StepSimulation
 
-from turtle_sim_ode.ros.viewer_config import WINDOW, rviz_config
+from turtle_sim_ode.ros.viewer_config import FIXED_FRAME, WINDOW, rviz_config
 
 # Real-time factor over this much wall time, as Gazebo's client averages it.
 RTF_WINDOW_S = 1.0
@@ -32,6 +32,7 @@ STATE_POLL_S = 0.5
 UI_PERIOD_MS = 100
 SERVICE_TIMEOUT_S = 2.0
 CONTROL_WINDOW_WIDTH = 210
+ADOPT_PERIOD_S = 0.1  # tf from `world` to the robots' trees, at rviz's pace
 
 
 class WorldClock:
@@ -125,6 +126,49 @@ class ServerLink:
         threading.Thread(target=run, daemon=True).start()
 
 
+class FrameAdopter:
+    """Ties each tf tree without the `world` frame (a robot's `odom`, or `map` under amcl) to `world` at identity,
+    as Gazebo's robots start with odometry at the world's origin, so that the robots' laser scans and point clouds
+    show among the scene's models; a frame that gets another parent meanwhile is left alone."""
+
+    def __init__(self) -> None:
+        import tf2_ros
+        from tf2_msgs.msg import TFMessage
+
+        self._buffer = tf2_ros.Buffer()
+        self._listener = tf2_ros.TransformListener(self._buffer)
+        self._publisher = rospy.Publisher("/tf", TFMessage, queue_size=1)
+        self._message = TFMessage
+        self._parented: Set[str] = set()  # frames others gave a parent: never tied to `world` by the viewer
+        self._timer = rospy.Timer(rospy.Duration(ADOPT_PERIOD_S), self._adopt)
+
+    def close(self) -> None:
+        self._timer.shutdown()
+        self._listener.unregister()
+
+    def roots(self) -> List[str]:
+        """The frames to tie to `world`: parents in others' transforms that are nobody else's child."""
+        frames = yaml.safe_load(self._buffer.all_frames_as_yaml()) or {}
+        me = rospy.get_name()
+        self._parented.update(frame for frame, about in frames.items() if about.get("broadcaster") != me)
+        parents = {about.get("parent") for frame, about in frames.items() if about.get("broadcaster") != me}
+        return sorted(frame for frame in parents - self._parented if frame and frame != FIXED_FRAME)
+
+    def _adopt(self, _event) -> None:  # type: ignore[no-untyped-def]
+        from geometry_msgs.msg import TransformStamped
+
+        transforms = []
+        for root in self.roots():
+            transform = TransformStamped()
+            transform.header.stamp = rospy.Time.now()
+            transform.header.frame_id = FIXED_FRAME
+            transform.child_frame_id = root
+            transform.transform.rotation.w = 1.0
+            transforms.append(transform)
+        if transforms:
+            self._publisher.publish(self._message(transforms))
+
+
 def control_window(link: ServerLink):  # type: ignore[no-untyped-def]
     """The control window (Qt widgets; imported here so that the node without a display needs no Qt)."""
     from python_qt_binding.QtCore import QTimer
@@ -215,6 +259,7 @@ def run_viewer(rviz_config_path: Optional[str] = None, rviz_args: Sequence[str] 
     rviz = subprocess.Popen(["rviz", "-d", rviz_config_path, rviz_name] + list(rviz_args), stdin=subprocess.DEVNULL)
     app = QApplication([])
     link = ServerLink(WorldClock())
+    adopter = FrameAdopter()
     window = control_window(link)
     window.show()
     watch = QTimer()  # rviz closed or ROS shut down: the viewer ends (and lets Python see signals meanwhile)
@@ -224,6 +269,7 @@ def run_viewer(rviz_config_path: Optional[str] = None, rviz_args: Sequence[str] 
         app.exec_()
     finally:
         link.close()
+        adopter.close()
         if rviz.poll() is None:
             rviz.terminate()
             try:
