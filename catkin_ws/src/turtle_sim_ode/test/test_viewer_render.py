@@ -44,8 +44,25 @@ GREEN_BLOCK = """<sdf version="1.6"><model name="green_block"><static>true</stat
 Mask = Callable[[np.ndarray], np.ndarray]
 
 
+# Gazebo's background and ground plane (Gazebo/Grey) as the viewer draws them: the 3D view is where they fill most
+# of the rows and columns (menus and the control window have a pixel of that grey here and there).
+VIEW_GREY = (178, 178, 178)
+
+
+def view_only(image: np.ndarray) -> np.ndarray:
+    """The image with everything outside the 3D view blacked out."""
+    grey = np.all(np.abs(image.astype(int) - VIEW_GREY) <= 3, axis=2)
+    columns = np.nonzero(grey.sum(axis=0) > 0.5 * grey.sum(axis=0).max())[0]
+    rows = np.nonzero(grey.sum(axis=1) > 0.5 * grey.sum(axis=1).max())[0]
+    view = np.zeros_like(image)
+    if len(columns) and len(rows):
+        view[rows[0] : rows[-1] + 1, columns[0] : columns[-1] + 1] = image[rows[0] : rows[-1] + 1, columns[0] : columns[-1] + 1]
+    return view
+
+
 def channels(image: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-    return tuple(image[:, :, i].astype(int) for i in range(3))  # type: ignore[return-value]
+    view = view_only(image)
+    return tuple(view[:, :, i].astype(int) for i in range(3))  # type: ignore[return-value]
 
 
 def blue(image: np.ndarray) -> np.ndarray:

@@ -14,15 +14,8 @@ from turtle_sim_ode.models.builder import Transform, compose
 from turtle_sim_ode.models.sdf import parse_sdf_world
 from turtle_sim_ode.ros.viewer_config import FIXED_FRAME, SCENE_TOPIC, rviz_config
 from turtle_sim_ode.world.simulation import Simulation
-from turtle_sim_ode.world.viewer_scene import (
-    DEFAULT_USER_CAMERA,
-    GROUND_PLANE,
-    MAX_ORBIT_PITCH,
-    OWN_COLOURS,
-    SceneTracker,
-    SceneUpdate,
-    orbit_view,
-)
+from turtle_sim_ode.world.user_camera import DEFAULT_USER_CAMERA, MAX_ORBIT_PITCH, orbit_view
+from turtle_sim_ode.world.viewer_scene import GROUND_PLANE, OWN_COLOURS, SceneTracker, SceneUpdate
 
 
 def box_model(name: str = "box", visual: str = "", static: bool = False) -> str:

@@ -1,12 +1,12 @@
 """The viewer's rviz configuration, written at its start: the world as Gazebo's client draws it (the scene markers on
 /gazebo/scene_markers, in frame `world`), what turtlebot.rviz showed beside (tf, laser, depth point cloud; the robot
-model, which the scene draws already, off), seen first from the world's user camera (world.viewer_scene.orbit_view)
+model, which the scene draws already, off; camera images: add an Image display, or rqt_image_view), seen first from the world's user camera (world.viewer_scene.orbit_view)
 with rviz's orbit controls (left drag orbits, middle drag pans, wheel or right drag zooms)."""
 from __future__ import annotations
 
 from typing import Any, Dict, List, Optional, Sequence
 
-from turtle_sim_ode.world.viewer_scene import DEFAULT_USER_CAMERA, OrbitView, orbit_view
+from turtle_sim_ode.world.user_camera import DEFAULT_USER_CAMERA, OrbitView, orbit_view
 
 SCENE_TOPIC = "/gazebo/scene_markers"
 FIXED_FRAME = "world"
@@ -43,7 +43,6 @@ def displays(scene_topic: str = SCENE_TOPIC) -> List[Dict[str, Any]]:
             **{"Topic": "/scan", "Color Transformer": "FlatColor", "Color": "255; 0; 0", "Size (m)": 0.03},
         ),
         _display("PointCloud2", "PointCloud2", **{"Topic": "/camera/depth/points", "Size (m)": 0.02}),
-        _display("Image", "Camera", False, **{"Image Topic": "/camera/rgb/image_raw"}),
     ]
 
 
@@ -69,7 +68,7 @@ def rviz_config(user_camera: Optional[Sequence[float]] = None, scene_topic: str 
     (x y z roll pitch yaw; None: Gazebo's default view)."""
     camera = tuple(user_camera) if user_camera is not None else DEFAULT_USER_CAMERA
     return {
-        "Panels": [{"Class": "rviz/Displays", "Name": "Displays", "Help Height": 0}],
+        "Panels": [],  # the 3D view fills the window, as Gazebo's; Panels > Displays opens the display list
         "Visualization Manager": {
             "Class": "",
             "Name": "root",
@@ -90,5 +89,7 @@ def rviz_config(user_camera: Optional[Sequence[float]] = None, scene_topic: str 
             ],
             "Views": {"Current": view_of(orbit_view(camera)), "Saved": None},  # type: ignore[arg-type]
         },
-        "Window Geometry": dict(WINDOW, **{"Hide Left Dock": True, "Hide Right Dock": True}),
+        "Window Geometry": dict(
+            WINDOW, **{"Hide Left Dock": True, "Hide Right Dock": True}
+        ),
     }
