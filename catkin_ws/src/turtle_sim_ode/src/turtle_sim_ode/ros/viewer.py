@@ -27,11 +27,13 @@ from turtle_sim_ode.ros.viewer_config import FIXED_FRAME, WINDOW, rviz_config
 
 # Real-time factor over this much wall time, as Gazebo's client averages it.
 RTF_WINDOW_S = 1.0
-# The world counts as paused when sim time stood still this long (and the server says so).
+# How often the pause state is asked for (gazebo_msgs/GetPhysicsProperties).
 STATE_POLL_S = 0.5
 UI_PERIOD_MS = 100
 SERVICE_TIMEOUT_S = 2.0
+STATE_FAILURES = 3
 CONTROL_WINDOW_WIDTH = 210
+WORLD_WAIT_S = 15.0
 ADOPT_PERIOD_S = 0.1  # tf from `world` to the robots' trees, at rviz's pace
 
 
@@ -94,12 +96,17 @@ class ServerLink:
         self.clock.on_clock(message.clock.to_sec(), time.monotonic())
 
     def _poll_state(self) -> None:
+        failures = 0
         while not self._stop.is_set() and not rospy.is_shutdown():
+            paused = self.clock.paused
             try:
                 rospy.wait_for_service("/gazebo/get_physics_properties", SERVICE_TIMEOUT_S)
                 paused = rospy.ServiceProxy("/gazebo/get_physics_properties", GetPhysicsProperties)().pause
+                failures = 0
             except (rospy.ROSException, rospy.ServiceException):
-                paused = None
+                failures += 1  # a busy server may miss one answer: "no server" only when it keeps silent
+                if failures >= STATE_FAILURES:
+                    paused = None
             try:
                 can_step = bool(rosgraph.Master(rospy.get_name()).lookupService("/gazebo/step_simulation"))
             except (rosgraph.MasterException, OSError):  # not offered (gzserver's default), or no master
@@ -140,6 +147,7 @@ class FrameAdopter:
         self._publisher = rospy.Publisher("/tf", TFMessage, queue_size=1)
         self._message = TFMessage
         self._parented: Set[str] = set()  # frames others gave a parent: never tied to `world` by the viewer
+        self._last_stamp = rospy.Time(0)
         self._timer = rospy.Timer(rospy.Duration(ADOPT_PERIOD_S), self._adopt)
 
     def close(self) -> None:
@@ -157,10 +165,14 @@ class FrameAdopter:
     def _adopt(self, _event) -> None:  # type: ignore[no-untyped-def]
         from geometry_msgs.msg import TransformStamped
 
+        now = rospy.Time.now()
+        if now <= self._last_stamp:  # sim time stood still (paused, or /clock slower than the timer): sent already
+            return
+        self._last_stamp = now
         transforms = []
         for root in self.roots():
             transform = TransformStamped()
-            transform.header.stamp = rospy.Time.now()
+            transform.header.stamp = now
             transform.header.frame_id = FIXED_FRAME
             transform.child_frame_id = root
             transform.transform.rotation.w = 1.0
@@ -240,7 +252,12 @@ def write_config(user_camera: Optional[Sequence[float]]) -> str:
 
 
 def user_camera_pose() -> Optional[Sequence[float]]:
-    """The world's first view, as the simulator published it (None: Gazebo's default)."""
+    """The world's first view, as the simulator published it (None: Gazebo's default). As gzclient waits for its
+    server, this waits (at most WORLD_WAIT_S) for the simulator's services, which it offers once the world is in."""
+    try:
+        rospy.wait_for_service("/gazebo/get_physics_properties", WORLD_WAIT_S)
+    except rospy.ROSException:
+        rospy.logwarn("no simulator answers yet (/gazebo/get_physics_properties): the viewer starts on the default view")
     pose = rospy.get_param("/gazebo/user_camera_pose", None)
     if isinstance(pose, list) and len(pose) == 6 and all(isinstance(v, (int, float)) for v in pose):
         return [float(v) for v in pose]
