@@ -14,11 +14,12 @@ from typing import Dict, Tuple
 import rospy
 import rostest
 from gazebo_msgs.msg import ModelState, ModelStates
-from gazebo_msgs.srv import DeleteModel, SetModelState, SpawnModel
 from geometry_msgs.msg import Point, Pose, Quaternion
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from visualization_msgs.msg import Marker, MarkerArray
+
+from gazebo_clients import connect_gazebo_services
 
 TOPIC = "/gazebo/scene_markers"
 NAMES = ("box_a", "box_b", "box_c")
@@ -81,7 +82,9 @@ operations = st.lists(
     st.tuples(
         st.sampled_from(["spawn", "move", "delete"]),
         st.sampled_from(NAMES),
-        st.tuples(coordinates, coordinates, st.floats(0, 1, allow_subnormal=False), st.floats(-3, 3, allow_subnormal=False)),
+        st.tuples(
+            coordinates, coordinates, st.floats(0, 1, allow_subnormal=False), st.floats(-3, 3, allow_subnormal=False)
+        ),
     ),
     min_size=1,
     max_size=6,
@@ -91,11 +94,7 @@ operations = st.lists(
 class SceneMarkersFollowTheWorld(unittest.TestCase):
     @classmethod
     def setUpClass(cls) -> None:
-        for service in ("/gazebo/spawn_sdf_model", "/gazebo/delete_model", "/gazebo/set_model_state"):
-            rospy.wait_for_service(service, 120)
-        cls.spawn = rospy.ServiceProxy("/gazebo/spawn_sdf_model", SpawnModel)
-        cls.delete = rospy.ServiceProxy("/gazebo/delete_model", DeleteModel)
-        cls.move = rospy.ServiceProxy("/gazebo/set_model_state", SetModelState)
+        connect_gazebo_services(cls, 120)
         cls.keeper = SceneKeeper()
         cls.states_sub = rospy.Subscriber("/gazebo/model_states", ModelStates, cls.keeper.on_states, queue_size=1)
         cls.timeout = rospy.get_param("~timeout", 10.0)
@@ -117,23 +116,23 @@ class SceneMarkersFollowTheWorld(unittest.TestCase):
             for action, name, (x, y, z, yaw) in steps:
                 pose = Pose(Point(x, y, z), quaternion_of(yaw))
                 if action == "spawn":
-                    answer = self.spawn(name, BOX.format(name=name), "", pose, "world")
+                    answer = self.spawn_sdf_model(name, BOX.format(name=name), "", pose, "world")
                 elif action == "move":
-                    answer = self.move(ModelState(model_name=name, pose=pose, reference_frame="world"))
+                    answer = self.set_model_state(ModelState(model_name=name, pose=pose, reference_frame="world"))
                 else:
-                    answer = self.delete(name)
+                    answer = self.delete_model(name)
                 what = "%s %s at (%.3f, %.3f, %.3f, yaw %.3f): %s" % (action, name, x, y, z, yaw, answer.status_message)
                 self.agree(what)
         finally:
             for name in NAMES:
-                self.delete(name)
+                self.delete_model(name)
             self.agree("clean-up")
         rospy.loginfo("scene agreed with model_states within %.3f s at worst", max(self.latencies))
 
     def test_late_listener_gets_the_whole_scene(self) -> None:
         """A listener in a process of its own (rospy shares one connection per topic in a process) gets, as its
         first message, a DELETEALL and every visual of the scene, though nothing changes meanwhile."""
-        self.spawn("box_a", BOX.format(name="box_a"), "", Pose(Point(1, 2, 0), quaternion_of(0.5)), "world")
+        self.spawn_sdf_model("box_a", BOX.format(name="box_a"), "", Pose(Point(1, 2, 0), quaternion_of(0.5)), "world")
         try:
             self.agree("spawn box_a")
             first = subprocess.run(
@@ -143,7 +142,7 @@ class SceneMarkersFollowTheWorld(unittest.TestCase):
             self.assertIn('ns: "box_a"', first)
             self.assertIn('ns: "ground_plane"', first)
         finally:
-            self.delete("box_a")
+            self.delete_model("box_a")
 
 
 if __name__ == "__main__":

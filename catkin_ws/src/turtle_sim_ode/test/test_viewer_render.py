@@ -18,10 +18,9 @@ import numpy as np
 import rospy
 import rostest
 from gazebo_msgs.msg import ModelState
-from gazebo_msgs.srv import DeleteModel, SetModelState, SpawnModel
 from geometry_msgs.msg import Point, Pose, Quaternion
-from std_srvs.srv import Empty
 
+from gazebo_clients import connect_gazebo_services
 from workspace_testing.processes import stop_group
 from workspace_testing.screen import start_xvfb
 from workspace_testing.tool_window import save_png
@@ -56,7 +55,9 @@ def view_only(image: np.ndarray) -> np.ndarray:
     rows = np.nonzero(grey.sum(axis=1) > 0.5 * grey.sum(axis=1).max())[0]
     view = np.zeros_like(image)
     if len(columns) and len(rows):
-        view[rows[0] : rows[-1] + 1, columns[0] : columns[-1] + 1] = image[rows[0] : rows[-1] + 1, columns[0] : columns[-1] + 1]
+        view[rows[0] : rows[-1] + 1, columns[0] : columns[-1] + 1] = image[
+            rows[0] : rows[-1] + 1, columns[0] : columns[-1] + 1
+        ]
     return view
 
 
@@ -108,12 +109,11 @@ class ArenaView:
 
 
 class ViewerShowsTheWorld(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls) -> None:
+        connect_gazebo_services(cls, 120)
+
     def setUp(self) -> None:
-        for service in ("/gazebo/spawn_sdf_model", "/gazebo/delete_model", "/gazebo/set_model_state"):
-            rospy.wait_for_service(service, 120)
-        self.spawn = rospy.ServiceProxy("/gazebo/spawn_sdf_model", SpawnModel)
-        self.delete = rospy.ServiceProxy("/gazebo/delete_model", DeleteModel)
-        self.move = rospy.ServiceProxy("/gazebo/set_model_state", SetModelState)
         self.timeout = rospy.get_param("~timeout", 90.0)
         self.shots = rospy.get_param("~screenshot_dir", tempfile.gettempdir())
         self.xvfb, self.display = start_xvfb()
@@ -177,27 +177,31 @@ class ViewerShowsTheWorld(unittest.TestCase):
         self.assertLess(math.dist(pillars[:2], view.project(0.0, 0.0)), 0.3 * view.pixels_per_metre)  # type: ignore[index]
         self.assertEqual(np.count_nonzero(red(arena)), 0)
 
-        answer = self.spawn("red_box", RED_BOX, "", Pose(Point(1.2, 0.0, 0.3), Quaternion(0, 0, 0, 1)), "world")
+        answer = self.spawn_sdf_model(
+            "red_box", RED_BOX, "", Pose(Point(1.2, 0.0, 0.3), Quaternion(0, 0, 0, 1)), "world"
+        )
         self.assertTrue(answer.success, answer.status_message)
         shot = self.screenshot_until("viewer_red_box", self.near(red, view, 1.2, 0.0, 0.25))
         self.assertTrue(self.near(red, view, 1.2, 0.0, 0.25)(shot), "the spawned red box does not show where it stands")
 
-        rospy.ServiceProxy("/gazebo/pause_physics", Empty)()
+        self.pause_physics()
         state = ModelState(model_name="red_box", pose=Pose(Point(-0.5, 1.2, 0.3), Quaternion(0, 0, 0, 1)))
-        self.assertTrue(self.move(state).success)
+        self.assertTrue(self.set_model_state(state).success)
         moved = self.screenshot_until("viewer_red_box_moved", self.near(red, view, -0.5, 1.2, 0.25))
         self.assertTrue(self.near(red, view, -0.5, 1.2, 0.25)(moved), "the red box did not move in the viewer")
-        rospy.ServiceProxy("/gazebo/unpause_physics", Empty)()
+        self.unpause_physics()
 
-        self.assertTrue(self.delete("red_box").success)
+        self.assertTrue(self.delete_model("red_box").success)
         gone = self.screenshot_until("viewer_red_box_deleted", lambda image: np.count_nonzero(red(image)) == 0)
         self.assertEqual(np.count_nonzero(red(gone)), 0, "the deleted red box still shows")
 
-        answer = self.spawn("green_block", GREEN_BLOCK, "", Pose(Point(-1.0, -0.8, 0.0), Quaternion(0, 0, 0, 1)), "world")
+        answer = self.spawn_sdf_model(
+            "green_block", GREEN_BLOCK, "", Pose(Point(-1.0, -0.8, 0.0), Quaternion(0, 0, 0, 1)), "world"
+        )
         self.assertTrue(answer.success, answer.status_message)
         block = self.screenshot_until("viewer_collada_block", self.near(green, view, -1.0, -0.8, 0.3))
         self.assertTrue(self.near(green, view, -1.0, -0.8, 0.3)(block), "the Collada block's own green does not show")
-        self.delete("green_block")
+        self.delete_model("green_block")
 
 
 if __name__ == "__main__":

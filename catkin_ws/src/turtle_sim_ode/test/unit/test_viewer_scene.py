@@ -59,8 +59,11 @@ def test_colours_as_gazebo_draws_them() -> None:
     """SDF diffuse with <transparency>, a Gazebo/* script, a URDF named material's rgba (its alpha too), and a
     <gazebo reference> material over the URDF's (gazebo_ros_pkgs urdf2gazebo: the <gazebo> material wins)."""
     sim = Simulation()
-    sim.spawn_sdf("diffuse", box_model("diffuse", "<material><diffuse>1 0 0 1</diffuse></material><transparency>0.5"
-                                       "</transparency>"), (0, 0, 0, 0, 0, 0))
+    sim.spawn_sdf(
+        "diffuse",
+        box_model("diffuse", "<material><diffuse>1 0 0 1</diffuse></material><transparency>0.5" "</transparency>"),
+        (0, 0, 0, 0, 0, 0),
+    )
     script = "<material><script><name>Gazebo/Blue</name></script></material>"
     sim.spawn_sdf("script", box_model("script", script), (2, 0, 0, 0, 0, 0))
     sim.spawn_sdf("plain", box_model("plain"), (4, 0, 0, 0, 0, 0))
@@ -78,7 +81,7 @@ def test_colours_as_gazebo_draws_them() -> None:
 def test_world_poses_compose_link_and_visual_origin() -> None:
     sim = Simulation()
     sim.spawn_sdf("box", box_model(static=True), (1.0, 2.0, 0.5, 0.0, 0.0, math.pi / 2))
-    (_, visual, (position, quaternion)), = scene_of(sim).added["box"]
+    ((_, visual, (position, quaternion)),) = scene_of(sim).added["box"]
     assert visual.shape == "box" and visual.size == (0.3, 0.2, 0.1)
     assert position == pytest.approx((1.0, 2.0, 0.6))
     assert quaternion == pytest.approx((math.cos(math.pi / 4), 0.0, 0.0, math.sin(math.pi / 4)))
@@ -166,8 +169,11 @@ operations = st.lists(
     st.tuples(
         st.sampled_from(["spawn", "move", "delete", "step"]),
         st.sampled_from(["a", "b", "c"]),
-        st.tuples(*[st.floats(-5, 5, allow_subnormal=False)] * 2, st.floats(0, 2, allow_subnormal=False),
-              st.floats(-math.pi, math.pi, allow_subnormal=False)),
+        st.tuples(
+            *[st.floats(-5, 5, allow_subnormal=False)] * 2,
+            st.floats(0, 2, allow_subnormal=False),
+            st.floats(-math.pi, math.pi, allow_subnormal=False),
+        ),
     ),
     max_size=12,
 )
@@ -234,7 +240,11 @@ def test_first_views() -> None:
 
 @given(
     st.tuples(
-        st.floats(-20, 20), st.floats(-20, 20), st.floats(0.1, 20), st.just(0.0), st.floats(-1.5, 1.5),
+        st.floats(-20, 20),
+        st.floats(-20, 20),
+        st.floats(0.1, 20),
+        st.just(0.0),
+        st.floats(-1.5, 1.5),
         st.floats(-math.pi, math.pi),
     )
 )

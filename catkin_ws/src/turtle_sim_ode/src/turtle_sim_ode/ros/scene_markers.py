@@ -9,6 +9,7 @@ it. The world lock is held only to read link poses; messages are built and sent 
 from __future__ import annotations
 
 import threading
+import time
 from typing import Dict, List, Tuple
 
 import rospy
@@ -115,12 +116,18 @@ class SceneMarkers:
 
     def _run(self) -> None:
         period = 1.0 / SCENE_RATE_HZ
+        due = time.monotonic()
         while not self._stop.is_set() and not rospy.is_shutdown():
             if self.publisher.get_num_connections() == 0:
                 self._stop.wait(IDLE_CHECK_S)
+                due = time.monotonic()
                 continue
             try:
                 self.publish_changes()
             except Exception as error:  # the viewer's scene never ends the simulator
                 rospy.logwarn_throttle(10.0, "scene: not published: %s: %s" % (type(error).__name__, error))
-            self._stop.wait(period)
+            # On a schedule, not a pause after the work: waiting for the world lock and the GIL does not slow the
+            # rate; a tick late by more than a period is not made up.
+            now = time.monotonic()
+            due = max(due + period, now - period)
+            self._stop.wait(max(0.0, due - now))

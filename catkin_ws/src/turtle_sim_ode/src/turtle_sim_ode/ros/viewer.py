@@ -257,7 +257,9 @@ def user_camera_pose() -> Optional[Sequence[float]]:
     try:
         rospy.wait_for_service("/gazebo/get_physics_properties", WORLD_WAIT_S)
     except rospy.ROSException:
-        rospy.logwarn("no simulator answers yet (/gazebo/get_physics_properties): the viewer starts on the default view")
+        rospy.logwarn(
+            "no simulator answers yet (/gazebo/get_physics_properties): the viewer starts on the default view"
+        )
     pose = rospy.get_param("/gazebo/user_camera_pose", None)
     if isinstance(pose, list) and len(pose) == 6 and all(isinstance(v, (int, float)) for v in pose):
         return [float(v) for v in pose]

@@ -89,7 +89,5 @@ def rviz_config(user_camera: Optional[Sequence[float]] = None, scene_topic: str 
             ],
             "Views": {"Current": view_of(orbit_view(camera)), "Saved": None},  # type: ignore[arg-type]
         },
-        "Window Geometry": dict(
-            WINDOW, **{"Hide Left Dock": True, "Hide Right Dock": True}
-        ),
+        "Window Geometry": dict(WINDOW, **{"Hide Left Dock": True, "Hide Right Dock": True}),
     }
