@@ -59,7 +59,8 @@ def run_gazebo(argv: Sequence[str]) -> int:
     client: Optional[subprocess.Popen] = None
     problem = display_problem(os.environ)
     if problem is None and not any(arg in ("-h", "--help", "-v", "--version") for arg in argv):
-        client = subprocess.Popen(VIEWER + ros_arguments(argv), stdin=subprocess.DEVNULL)
+        # No remapping of the command line: those are the server's (its __name:= would name the viewer too).
+        client = subprocess.Popen(VIEWER, stdin=subprocess.DEVNULL)
         threading.Thread(target=_stop_server_after, args=(client,), daemon=True).start()
     elif problem is not None:
         print("gazebo: %s: no viewer (gzclient), the simulation runs headless" % problem, file=sys.stderr)

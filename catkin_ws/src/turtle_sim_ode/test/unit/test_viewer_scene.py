@@ -6,11 +6,11 @@ import math
 from typing import Dict, Tuple
 
 import pytest
-from conftest import MESH_PACKAGE, fixture_paths
+from conftest import MESH_PACKAGE, TURTLEBOT_URDF, fixture_paths
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from turtle_sim_ode.models.builder import Transform, compose
+from turtle_sim_ode.models.builder import Transform, compose, quat_multiply
 from turtle_sim_ode.models.sdf import parse_sdf_world
 from turtle_sim_ode.ros.viewer_config import FIXED_FRAME, SCENE_TOPIC, rviz_config
 from turtle_sim_ode.world.simulation import Simulation
@@ -265,3 +265,25 @@ def test_world_user_camera_and_rviz_config() -> None:
     assert manager["Views"]["Current"]["Class"] == "rviz/Orbit"
     assert manager["Views"]["Current"]["Distance"] == pytest.approx(12.0)
     assert parse_sdf_world((MESH_PACKAGE / "worlds" / "mesh_room.world").read_text()).user_camera is not None
+
+
+def test_joints_move_their_links() -> None:
+    """A wheel turned by set_model_configuration is sent as moved, turned by that angle about its axle; the
+    chassis, which stays, is not."""
+    sim = Simulation()
+    sim.spawn_urdf("robot", TURTLEBOT_URDF, (0, 0, 0, 0, 0, 0))
+    for _ in range(200):  # settle on the ground
+        sim.step()
+    tracker = SceneTracker(None)
+    first = tracker.update(tracker.read_poses(sim.models))
+    wheel_before = {visual.link: pose for _, visual, pose in first.added["robot"]}["wheel_left_link"]
+    sim.set_model_configuration("robot", ["wheel_left_joint"], [1.0])
+    update = tracker.update(tracker.read_poses(sim.models))
+    moved = {visual.link: pose for _, visual, pose in update.moved["robot"]}
+    assert "wheel_left_link" in moved and "base_link" not in moved
+    turned = quat_multiply(conjugate(wheel_before[1]), moved["wheel_left_link"][1])
+    assert 2 * math.acos(min(1.0, abs(turned[0]))) == pytest.approx(1.0, abs=0.02)
+
+
+def conjugate(q: Tuple[float, float, float, float]) -> Tuple[float, float, float, float]:
+    return (q[0], -q[1], -q[2], -q[3])
