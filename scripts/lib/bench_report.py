@@ -71,7 +71,7 @@ def find_run(results: Dict[str, Any], robots: int, time_step: float) -> Optional
 
 
 def targets(results: Dict[str, Any]) -> List[Dict[str, Any]]:
-    """Issue #8's and #15's targets: name, value, goal, pass (None when not measured in this run)."""
+    """The targets of issues #8, #15 and #30: name, value, goal, pass (None when not measured in this run)."""
     one_1ms, one_10ms, ten_1ms = find_run(results, 1, 0.001), find_run(results, 1, 0.01), find_run(results, 10, 0.001)
     physics_rtf = results.get("physics_only", {}).get("rtf")
     rows: List[Tuple[str, Optional[float], str, Callable[[float], bool]]] = [
@@ -122,6 +122,7 @@ def targets(results: Dict[str, Any]) -> List[Dict[str, Any]]:
             "<= 1.10",
             lambda v: v <= 1.10,
         ),
+        ("viewer open: RTF share", results.get("viewer", {}).get("rtf_ratio"), ">= 0.90", lambda v: v >= 0.9),
     ]
     return [
         {"target": name, "value": value, "goal": goal, "pass": None if value is None else check(value)}
