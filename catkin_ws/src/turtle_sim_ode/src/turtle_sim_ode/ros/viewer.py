@@ -136,7 +136,7 @@ class ServerLink:
 class FrameAdopter:
     """Ties each tf tree without the `world` frame (a robot's `odom`, or `map` under amcl) to `world` at identity,
     as Gazebo's robots start with odometry at the world's origin, so that the robots' laser scans and point clouds
-    show among the scene's models; a frame that gets another parent meanwhile is left alone."""
+    show among the scene's models; a frame that gets a parent other than `world` is left alone from then on."""
 
     def __init__(self) -> None:
         import tf2_ros
@@ -157,9 +157,10 @@ class FrameAdopter:
     def roots(self) -> List[str]:
         """The frames to tie to `world`: parents in others' transforms that are nobody else's child."""
         frames = yaml.safe_load(self._buffer.all_frames_as_yaml()) or {}
-        me = rospy.get_name()
-        self._parented.update(frame for frame, about in frames.items() if about.get("broadcaster") != me)
-        parents = {about.get("parent") for frame, about in frames.items() if about.get("broadcaster") != me}
+        # Ties to `world` are this viewer's or another viewer's (any may close): they do not count as parents.
+        others = {frame: about for frame, about in frames.items() if about.get("parent") != FIXED_FRAME}
+        self._parented.update(others)
+        parents = {about.get("parent") for about in others.values()}
         return sorted(frame for frame in parents - self._parented if frame and frame != FIXED_FRAME)
 
     def _adopt(self, _event) -> None:  # type: ignore[no-untyped-def]
