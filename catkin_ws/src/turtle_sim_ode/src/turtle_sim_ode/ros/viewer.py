@@ -35,6 +35,7 @@ STATE_FAILURES = 3
 CONTROL_WINDOW_WIDTH = 210
 WORLD_WAIT_S = 15.0
 ADOPT_PERIOD_S = 0.1  # tf from `world` to the robots' trees, at rviz's pace
+TIE_FRESH_S = 1.0  # s of sim time: another viewer's tie to `world` this recent is kept up by it
 
 
 class WorldClock:
@@ -157,11 +158,20 @@ class FrameAdopter:
     def roots(self) -> List[str]:
         """The frames to tie to `world`: parents in others' transforms that are nobody else's child."""
         frames = yaml.safe_load(self._buffer.all_frames_as_yaml()) or {}
-        # Ties to `world` are this viewer's or another viewer's (any may close): they do not count as parents.
+        # Ties to `world` are this viewer's or another viewer's (any may close): they do not count as parents; one
+        # another viewer keeps up to date is left to it (two would send the same stamps).
         others = {frame: about for frame, about in frames.items() if about.get("parent") != FIXED_FRAME}
         self._parented.update(others)
+        recent = rospy.Time.now().to_sec() - TIE_FRESH_S
+        tied_by_others = {
+            frame
+            for frame, about in frames.items()
+            if about.get("parent") == FIXED_FRAME
+            and about.get("broadcaster") != rospy.get_name()
+            and float(about.get("most_recent_transform", 0.0)) >= recent
+        }
         parents = {about.get("parent") for about in others.values()}
-        return sorted(frame for frame in parents - self._parented if frame and frame != FIXED_FRAME)
+        return sorted(frame for frame in parents - self._parented - tied_by_others if frame and frame != FIXED_FRAME)
 
     def _adopt(self, _event) -> None:  # type: ignore[no-untyped-def]
         from geometry_msgs.msg import TransformStamped
@@ -179,7 +189,10 @@ class FrameAdopter:
             transform.transform.rotation.w = 1.0
             transforms.append(transform)
         if transforms:
-            self._publisher.publish(self._message(transforms))
+            try:
+                self._publisher.publish(self._message(transforms))
+            except rospy.ROSException:  # shutting down: the topic closed under the timer
+                pass
 
 
 def control_window(link: ServerLink):  # type: ignore[no-untyped-def]
