@@ -12,7 +12,7 @@ SCENE_TOPIC = "/gazebo/scene_markers"
 FIXED_FRAME = "world"
 # Gazebo's <scene><background> default, light grey; its ground plane is Gazebo/Grey.
 BACKGROUND = "178; 178; 178"
-WINDOW = {"Width": 800, "Height": 600, "X": 0, "Y": 0}
+WINDOW = {"Width": 760, "Height": 600, "X": 0, "Y": 0}  # the control window beside it fits a 1024 px screen
 GRID_HEIGHT = 0.002  # just above the ground plane's top, which would hide it
 
 
@@ -40,7 +40,8 @@ def displays(scene_topic: str = SCENE_TOPIC) -> List[Dict[str, Any]]:
         _display(
             "LaserScan",
             "LaserScan",
-            **{"Topic": "/scan", "Color Transformer": "FlatColor", "Color": "255; 0; 0", "Size (m)": 0.03},
+            # Magenta: no model's colour is taken for the laser's (Gazebo draws rays in a translucent blue).
+            **{"Topic": "/scan", "Color Transformer": "FlatColor", "Color": "255; 0; 255", "Size (m)": 0.03},
         ),
         _display("PointCloud2", "PointCloud2", **{"Topic": "/camera/depth/points", "Size (m)": 0.02}),
     ]
