@@ -383,6 +383,8 @@ def main(overrides: Optional[Dict[str, object]] = None, notes: Sequence[str] = (
         except (ModelError, WorldError, OSError) as error:
             rospy.logfatal("cannot load world [%s]: %s" % (settings.world_name, error))
             return 1
+    else:
+        publish_user_camera(None)  # no world: an earlier server's first view is not this one's
     if settings.spawn_model_name:
         urdf = rospy.get_param(settings.spawn_robot_description, None)
         if not isinstance(urdf, str):
