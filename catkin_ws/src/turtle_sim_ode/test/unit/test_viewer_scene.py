@@ -170,9 +170,9 @@ operations = st.lists(
         st.sampled_from(["spawn", "move", "delete", "step"]),
         st.sampled_from(["a", "b", "c"]),
         st.tuples(
-            *[st.floats(-5, 5, allow_subnormal=False)] * 2,
-            st.floats(0, 2, allow_subnormal=False),
-            st.floats(-math.pi, math.pi, allow_subnormal=False),
+            *[st.floats(-5, 5).map(lambda v: round(v, 6))] * 2,
+            st.floats(0, 2).map(lambda v: round(v, 6)),
+            st.floats(-math.pi, math.pi).map(lambda v: round(v, 6)),
         ),
     ),
     max_size=12,
