@@ -11,8 +11,9 @@
 8. ros_control (issue #24): a 1 kHz controller manager's cost in real-time factor, without ROS;
 9. scaling (issue #33): 300 IMUs on a TurtleBot against the bare TurtleBot, and a 1000-link chain, through the node's
    per-step loop and plugin adapters without a master.
+10. viewer (issue #30): the node's RTF with a viewer's /gazebo/scene_markers subscriber over that without.
 
-The targets (issues #8, #15, #33) are ratios of two figures of the same run where they can be; the table prints the
+The targets (issues #8, #15, #30, #33) are ratios of two figures of the same run where they can be; the table prints the
 machine's load and the CPU time the host stole, so a figure measured under load can be told from a quiet one.
 
 Every ROS process runs against a master of its own on a free port and is stopped at the end, also on Ctrl-C, SIGTERM
@@ -32,7 +33,7 @@ from typing import Any, Callable, Dict, Optional, Sequence
 
 # This file parses the arguments and runs the sections; they are in scripts/lib: bench_physics (1), bench_node and
 # bench_probe (2-4), bench_peer (5), bench_camera and bench_node (6), bench_lidar (7), bench_control (8),
-# bench_scaling (9), bench_report (targets, table), bench_plan (run sizes).
+# bench_scaling (9), bench_viewer (10), bench_report (targets, table), bench_plan (run sizes).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
 from workspace_env import ensure_workspace_env  # noqa: E402
 
@@ -40,6 +41,7 @@ ensure_workspace_env(__file__, sys.argv[1:])  # run as the README shows it, the 
 from bench_camera import camera_cost  # noqa: E402
 from bench_lidar import lidar_cost  # noqa: E402
 from bench_control import ros_control_cost  # noqa: E402
+from bench_viewer import viewer_cost  # noqa: E402
 from bench_node import camera_node, full_node, launch_to_first_odom, real_time  # noqa: E402
 from bench_peer import peer  # noqa: E402
 from bench_physics import physics_only  # noqa: E402
@@ -100,6 +102,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         measure(results, "lidar", "7. lidar", lambda: lidar_cost(plan.physics_steps, plan.physics_repeats))
         measure(results, "ros_control", "8. ros_control", lambda: ros_control_cost(plan))
         measure(results, "scaling", "9. scaling", lambda: scaling_cost(plan.physics_steps, plan.physics_repeats))
+        measure(results, "viewer", "10. viewer", lambda: viewer_cost(plan, processes))
     close_machine(results, ticks_at_start)
     results["targets"] = targets(results)
     return write_report(results, table(results), args.json)

@@ -2,7 +2,7 @@
 # Install what is missing, build, and run the TurtleBot demo: the simulator headless and as fast as it can go,
 # the robot driving a circle with a live progress line, then a PNG plot of wheel odometry against ground truth.
 #   scripts/demo.sh          headless
-#   scripts/demo.sh --gui    real time, with rviz showing the robot (needs a display)
+#   scripts/demo.sh --gui    real time, with the viewer showing the world and the robot (needs a display)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo=$(pwd)

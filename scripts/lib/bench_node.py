@@ -42,9 +42,10 @@ def node_rtf(
     room: bool = False,
     camera: Optional[Tuple[int, int, float]] = None,
     watch_camera: bool = False,
+    watch_scene: bool = False,
 ) -> Dict[str, Any]:
     """RTF and /clock intervals of the node in empty_world.launch with ``robots`` TurtleBots spawned (the first in
-    a ``room``, with ``camera``: see bench_probe.measure_rtf_task)."""
+    a ``room``, with ``camera``, a viewer's scene subscriber with ``watch_scene``: see bench_probe.measure_rtf_task)."""
     physics = dict(package_config("physics.yaml"), time_step=time_step)
     config = package_config("simulator.yaml")
     config["diff_drive"]["cmd_timeout"] = 0.0  # commands are sent once: the drives must not time out, at any RTF
@@ -55,7 +56,7 @@ def node_rtf(
             "empty_world.launch",
             ["real_time_factor:=%g" % real_time_factor, "physics:=" + physics_path, "config:=" + config_path],
         )
-        with Probe(ros, measure_rtf_task, robots, warmup, window, room, camera, watch_camera) as probe:
+        with Probe(ros, measure_rtf_task, robots, warmup, window, room, camera, watch_camera, watch_scene) as probe:
             try:
                 result = probe.receive(2 * STARTUP_TIMEOUT_S + warmup + window)
             except BenchError as error:

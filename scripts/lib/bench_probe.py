@@ -102,11 +102,13 @@ def measure_rtf_task(
     room: bool = False,
     camera: Optional[Tuple[int, int, float]] = None,
     watch_camera: bool = False,
+    watch_scene: bool = False,
 ) -> None:
     """Spawn ``robots`` TurtleBots driving circles, subscribe to all they publish, and send the RTF, /clock
     intervals and message rates over a window of ``window_s`` wall seconds after ``warmup_s``. With ``room`` the
     first robot drives in bench_camera's furnished room; with ``camera`` (width, height, rate Hz) it carries
-    bench_camera's RGB-D camera; ``watch_camera``: its image, depth image and cloud are subscribed too."""
+    bench_camera's RGB-D camera; ``watch_camera``: its image, depth image and cloud are subscribed too; ``watch_scene``:
+    the viewer's /gazebo/scene_markers too (read whole, as rviz reads it)."""
     import rospy
     from gazebo_msgs.srv import SpawnModel
     from geometry_msgs.msg import Point, Pose, Quaternion, Twist
@@ -142,6 +144,9 @@ def measure_rtf_task(
         if watch_camera and index == 0:
             bulk_topics = {"/%s/%s" % (name, topic): kind for kind, topic in CAMERA_TOPICS.items()}
             topics.update(bulk_topics)
+    if watch_scene:
+        bulk_topics["/gazebo/scene_markers"] = "scene"
+        topics["/gazebo/scene_markers"] = "scene"
 
     # Raw TCPROS readers, not rospy subscribers: every message is still sent and read, but this process spends
     # about a microsecond on each instead of a rospy callback's tens, which would load the machine it measures.

@@ -72,7 +72,7 @@ def find_run(results: Dict[str, Any], robots: int, time_step: float) -> Optional
 
 
 def targets(results: Dict[str, Any]) -> List[Dict[str, Any]]:
-    """Issue #8's, #15's and #33's targets: name, value, goal, pass (None when not measured in this run)."""
+    """Issue #8's, #15's, #30's and #33's targets: name, value, goal, pass (None when not measured in this run)."""
     one_1ms, one_10ms, ten_1ms = find_run(results, 1, 0.001), find_run(results, 1, 0.01), find_run(results, 10, 0.001)
     physics_rtf = results.get("physics_only", {}).get("rtf")
     rows: List[Tuple[str, Optional[float], str, Callable[[float], bool]]] = [
@@ -129,6 +129,7 @@ def targets(results: Dict[str, Any]) -> List[Dict[str, Any]]:
             "<= 1.10",
             lambda v: v <= 1.10,
         ),
+        ("viewer open: RTF share", results.get("viewer", {}).get("rtf_ratio"), ">= 0.90", lambda v: v >= 0.9),
     ]
     rows += scaling_targets(results)
     return [

@@ -10,7 +10,7 @@ from conftest import run_bench
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 TIMEOUT_S = 600  # --quick takes about 90 s on 2 cores; a busy machine may take longer
-SECTIONS = ("physics_only", "full_node", "real_time", "launch", "cameras", "ros_control", "scaling")
+SECTIONS = ("physics_only", "full_node", "real_time", "launch", "cameras", "ros_control", "scaling", "viewer")
 # 0 = unthrottled; linearity needs three robot counts, --quick has two ([] stands for any list index)
 MAY_BE_ZERO_OR_NONE = {
     "full_node.real_time_factor",
@@ -23,6 +23,9 @@ MAY_BE_ZERO_OR_NONE = {
     "cameras.node.runs[].width",  # None: the run without a camera
     "cameras.node.runs[].height",
     "cameras.node.runs[].rate_hz",
+    "viewer.real_time_factor",
+    "viewer.runs.no viewer[].real_time_factor",
+    "viewer.runs.viewer[].real_time_factor",
 }
 
 

@@ -2,7 +2,8 @@
 Gazebo's command line (see command_line) and runs the simulator as node `gazebo` in this process, or the viewer.
 
 The simulator runs in the calling process (roslaunch watches its pid; `required` and `respawn` work as with
-Gazebo's scripts); the viewer is rviz, started as node `gazebo_gui` where there is a display.
+Gazebo's scripts); the viewer is turtle_sim_ode's (rviz on the world's scene and a control window), started where
+there is a display.
 """
 from __future__ import annotations
 
@@ -16,7 +17,6 @@ import sys
 import threading
 from typing import List, Optional, Sequence
 
-import rospkg
 
 from gazebo_ros_dropin import display_problem
 from gazebo_ros_dropin.command_line import CommandLineError, parse_server_args, split_ros_arguments, usage
@@ -24,9 +24,8 @@ from gazebo_ros_dropin.command_line import CommandLineError, parse_server_args, 
 VERSION = "turtle_sim_ode (the gazebo_ros drop-in): Gazebo classic's ROS API on ODE"
 
 
-def rviz_config() -> str:
-    """What the viewer shows: the world's robots, their tf, laser and odometry (turtle_sim_ode's rviz config)."""
-    return os.path.join(rospkg.RosPack().get_path("turtle_sim_ode"), "rviz", "turtlebot.rviz")
+# The viewer: rviz on the world as Gazebo's client shows it, beside a control window (turtle_sim_ode.ros.viewer).
+VIEWER = ["rosrun", "turtle_sim_ode", "viewer"]
 
 
 def ros_arguments(argv: Sequence[str]) -> List[str]:
@@ -60,9 +59,8 @@ def run_gazebo(argv: Sequence[str]) -> int:
     client: Optional[subprocess.Popen] = None
     problem = display_problem(os.environ)
     if problem is None and not any(arg in ("-h", "--help", "-v", "--version") for arg in argv):
-        client = subprocess.Popen(
-            ["rosrun", "rviz", "rviz", "-d", rviz_config(), "__name:=gazebo_gui"], stdin=subprocess.DEVNULL
-        )
+        # No remapping of the command line: those are the server's (its __name:= would name the viewer too).
+        client = subprocess.Popen(VIEWER, stdin=subprocess.DEVNULL)
         threading.Thread(target=_stop_server_after, args=(client,), daemon=True).start()
     elif problem is not None:
         print("gazebo: %s: no viewer (gzclient), the simulation runs headless" % problem, file=sys.stderr)
@@ -88,22 +86,20 @@ def run_client(
     config: Optional[str] = None,
     notice: str = "gzclient: %s: no viewer; the simulation runs headless",
 ) -> int:
-    """gzclient: rviz on ``config`` (node `gazebo_gui` unless renamed) where there is a display; without one the
-    ``notice`` (with the reason) as a warning, and the node stays up doing nothing, so that a launch file's
-    required="true" viewer does not end the launch."""
+    """gzclient: the viewer (node `gazebo_gui`, with an anonymous suffix unless named, so several may run) where
+    there is a display, on rviz ``config`` if given; without one the ``notice`` (with the reason) as a warning, and
+    the node stays up doing nothing, so that a launch file's required="true" viewer does not end the launch."""
     problem = display_problem(os.environ)
     remaps = ros_arguments(argv)
     if problem is None:
-        if not any(arg.startswith("__name:=") for arg in remaps):
-            remaps.append("__name:=gazebo_gui")
-        os.execvp("rosrun", ["rosrun", "rviz", "rviz", "-d", config or rviz_config()] + remaps)
+        os.execvp(VIEWER[0], VIEWER + ([config] if config else []) + remaps)
     import rospy
 
     rospy.init_node("gazebo_gui")
     rospy.logwarn(notice, problem)
     ignored = [arg for arg in argv if ":=" not in arg]
     if ignored:
-        rospy.logwarn("gzclient: arguments %s ignored: the viewer is rviz", ignored)
+        rospy.logwarn("gzclient: arguments %s ignored: the viewer is rviz on the world", ignored)
     try:
         rospy.spin()
     except rospy.ROSInterruptException:

@@ -36,6 +36,8 @@ GAZEBO_MATERIALS: Dict[str, RGB] = {
     "Gazebo/GreenTransparent": (0.0, 1.0, 0.0),
     "Gazebo/RedTransparent": (1.0, 0.0, 0.0),
 }
+# Gazebo's transparent material scripts draw at this opacity (their diffuse alpha in gazebo.material).
+TRANSPARENT_SCRIPT_ALPHA = 0.5
 # What a link shows when nothing names its colour (Gazebo's default material is a light grey).
 DEFAULT_COLOR: RGB = (0.7, 0.7, 0.7)
 
@@ -88,3 +90,52 @@ def sdf_visual_color(visual: Element) -> Optional[RGB]:
         if color is not None:
             return color
     return gazebo_material(material.findtext("script/name"))
+
+
+def _alpha_of(text: Optional[str]) -> Optional[float]:
+    """The fourth of 4 numbers in 0..1 (clamped), or None."""
+    try:
+        values = [float(v) for v in (text or "").split()]
+    except ValueError:
+        return None
+    return min(1.0, max(0.0, values[3])) if len(values) == 4 else None
+
+
+def urdf_visual_alpha(visual: Element, named_alphas: Dict[str, float]) -> float:
+    """The opacity of a URDF ``<visual>``: its material's rgba alpha (inline, else the named material's), 1 without."""
+    material = visual.find("material")
+    if material is None:
+        return 1.0
+    color_element = material.find("color")
+    alpha = _alpha_of(color_element.get("rgba")) if color_element is not None else None
+    return alpha if alpha is not None else named_alphas.get(material.get("name", ""), 1.0)
+
+
+def urdf_named_alphas(robot: Element) -> Dict[str, float]:
+    """The rgba alphas of a URDF's robot-level named materials."""
+    found: Dict[str, float] = {}
+    for material in robot.findall("material"):
+        color = material.find("color")
+        alpha = _alpha_of(color.get("rgba")) if color is not None else None
+        if material.get("name") and alpha is not None:
+            found[material.get("name", "")] = alpha
+    return found
+
+
+def sdf_visual_alpha(visual: Element) -> float:
+    """The opacity Gazebo draws an SDF ``<visual>`` with: its diffuse alpha (a transparent script's), times
+    1 - ``<transparency>``."""
+    material = visual.find("material")
+    alpha = 1.0
+    if material is not None:
+        diffuse = _alpha_of(material.findtext("diffuse"))
+        script = (material.findtext("script/name") or "").strip()
+        if diffuse is not None:
+            alpha = diffuse
+        elif script in GAZEBO_MATERIALS and script.endswith("Transparent"):
+            alpha = TRANSPARENT_SCRIPT_ALPHA
+    try:
+        transparency = min(1.0, max(0.0, float(visual.findtext("transparency") or 0.0)))
+    except ValueError:
+        transparency = 0.0
+    return alpha * (1.0 - transparency)

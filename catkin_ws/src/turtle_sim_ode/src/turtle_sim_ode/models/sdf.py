@@ -24,7 +24,7 @@ from turtle_sim_ode.models.builder import (
 )
 from turtle_sim_ode.models.lights import SUN, Light, parse_light
 from turtle_sim_ode.models.world_state import WorldState, parse_world_state
-from turtle_sim_ode.models.materials import RGB, rgb_of, sdf_visual_color
+from turtle_sim_ode.models.materials import RGB, rgb_of, sdf_visual_alpha, sdf_visual_color
 from turtle_sim_ode.models.nested import flatten_nested_models, read_pose
 from turtle_sim_ode.models.textures import sdf_material_script
 from turtle_sim_ode.models.text import (
@@ -193,6 +193,8 @@ class World:
     background: Optional[RGB] = None
     # <spherical_coordinates>: latitude_deg, longitude_deg, elevation, heading_deg (None: Gazebo's zeros).
     spherical_coordinates: Optional[Tuple[float, float, float, float]] = None
+    # <gui><camera><pose>: where Gazebo's client first looks from (None: its default view).
+    user_camera: Optional[Pose] = None
     warnings: List[str] = field(default_factory=list)
 
 
@@ -374,8 +376,16 @@ def _parse_link(element: Element, static: bool, model: RobotModel) -> Tuple[Link
         if drawn_shape(visual, where, VISUAL_SHAPES, model.warnings):
             # A plane is drawn as the box it collides as, on moving links too.
             origin, geometry = _placed(visual, where, True, model.warnings)
-            texture = sdf_material_script(visual)
-            link.visuals.append(Visual(visual_name, origin, geometry, sdf_visual_color(visual), texture))
+            link.visuals.append(
+                Visual(
+                    visual_name,
+                    origin,
+                    geometry,
+                    sdf_visual_color(visual),
+                    texture=sdf_material_script(visual),
+                    alpha=sdf_visual_alpha(visual),
+                )
+            )
     surface: Dict[str, float] = {}
     for index, collision in enumerate(element.findall("collision")):
         collision_name = collision.get("name") or f"{name}_collision_{index}"
@@ -677,6 +687,8 @@ def parse_sdf_world(text: str) -> World:
         elif child.tag == "state":
             if world.state is None:
                 world.state = parse_world_state(element)
+        elif child.tag == "gui" and child.find("camera/pose") is not None:
+            world.user_camera = _pose(child.find("camera"), "<gui><camera>")
         elif child.tag == "scene":
             world.background = rgb_of(child_text(child, "background")) or world.background
         elif child.tag == "spherical_coordinates":

@@ -5,7 +5,15 @@ from dataclasses import dataclass, field, replace
 from typing import Dict, List, Optional, Tuple, Union
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.materials import RGB, gazebo_material, urdf_named_materials, urdf_visual_color
+from turtle_sim_ode.models.materials import (
+    RGB,
+    TRANSPARENT_SCRIPT_ALPHA,
+    gazebo_material,
+    urdf_named_alphas,
+    urdf_named_materials,
+    urdf_visual_alpha,
+    urdf_visual_color,
+)
 from turtle_sim_ode.models.text import ModelError, parse_xml, plugin_params, read_number, required_attribute
 from turtle_sim_ode.models.textures import MaterialScript
 from turtle_sim_ode.physics import sanity
@@ -121,6 +129,7 @@ class Visual:
     geometry: Geometry
     color: Optional[RGB] = None
     texture: Optional[MaterialScript] = None
+    alpha: float = 1.0  # opacity (URDF rgba alpha; SDF diffuse alpha and <transparency>)
 
 
 @dataclass
@@ -364,7 +373,9 @@ def drawn_shape(visual: Element, what: str, shapes: Tuple[str, ...], warnings: L
     return False
 
 
-def _parse_link(element: Element, warnings: List[str], materials: Dict[str, RGB]) -> Link:
+def _parse_link(
+    element: Element, warnings: List[str], materials: Dict[str, RGB], alphas: Optional[Dict[str, float]] = None
+) -> Link:
     name = required_attribute(element, "name", "<link>")
     inertial = element.find("inertial")
     link = Link(name, _parse_inertial(inertial, name) if inertial is not None else None)
@@ -377,6 +388,7 @@ def _parse_link(element: Element, warnings: List[str], materials: Dict[str, RGB]
                     _pose(visual.find("origin"), what),
                     _parse_geometry(visual.find("geometry"), what, warnings),
                     urdf_visual_color(visual, materials),
+                    alpha=urdf_visual_alpha(visual, alphas or {}),
                 )
             )
     for index, collision in enumerate(element.findall("collision")):
@@ -465,10 +477,12 @@ def _parse_gazebo(element: Element, model: RobotModel) -> None:
                 )
             )
         return
-    color = gazebo_material(element.findtext("material"))
+    script = (element.findtext("material") or "").strip()
+    color = gazebo_material(script)
     if color is not None and reference in model.links:  # Gazebo shows its material over the URDF's colours
         link = model.links[reference]
-        link.visuals = [replace(visual, color=color) for visual in link.visuals]
+        alpha = TRANSPARENT_SCRIPT_ALPHA if script.endswith("Transparent") else 1.0
+        link.visuals = [replace(visual, color=color, alpha=alpha) for visual in link.visuals]
     values = {}
     for child in element:
         if child.tag in SURFACE_TAGS:
@@ -545,8 +559,9 @@ def parse_urdf(text: str) -> RobotModel:
     warnings: List[str] = []
     links: Dict[str, Link] = {}
     materials = urdf_named_materials(robot)
+    alphas = urdf_named_alphas(robot)
     for element in link_elements:
-        link = _parse_link(element, warnings, materials)
+        link = _parse_link(element, warnings, materials, alphas)
         if link.name in links:
             raise ModelError(f"duplicate link name '{link.name}'")
         links[link.name] = link

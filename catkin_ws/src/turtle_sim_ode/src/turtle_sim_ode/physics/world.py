@@ -404,6 +404,11 @@ class PhysicsWorld:
         """Whether the ground plane is there (a world without a ground plane model has none, as in Gazebo)."""
         return self._has_ground
 
+    @property
+    def has_own_ground(self) -> bool:
+        """Whether the ground is the simulator's own (no world loaded), not one a ground plane model placed."""
+        return self._has_ground and self._ground_given is None
+
     def place_ground(
         self, normal: Sequence[float], offset: float, surface: Optional[SurfaceParams] = None
     ) -> ode.GeomPlane:

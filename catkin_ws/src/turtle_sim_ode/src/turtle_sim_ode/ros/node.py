@@ -22,6 +22,7 @@ from tf2_msgs.msg import TFMessage
 from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepSimulationResponse
 
 from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.urdf import Pose
 from turtle_sim_ode.ros.resource_paths import resource_paths
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.gazebo_api import MAX_RAYS_PER_MODEL, GazeboApi, TopicTypes, known_topic_types, summarise
@@ -29,6 +30,7 @@ from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
 from turtle_sim_ode.ros.performance import PerformanceMetricsPublisher
 from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, sim_stamp
 from turtle_sim_ode.ros.plugins import model_interfaces
+from turtle_sim_ode.ros.scene_markers import SceneMarkers
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
 from turtle_sim_ode.ros.wire import ClockPacker, PackedPublisher, release, stamp_parts
 from turtle_sim_ode.world.simulation import Simulation
@@ -67,6 +69,7 @@ class SimulatorNode:
         self.interfaces: Dict[str, List[Periodic]] = {}
         self.api: Optional[GazeboApi] = None
         self.metrics: Optional[PerformanceMetricsPublisher] = None
+        self.scene_markers: Optional[SceneMarkers] = None  # what the viewer (gzclient) draws
         self._step_service: Optional[rospy.Service] = None
         # Sim time of the last step and of the next /clock message (a reset of the simulation goes below both).
         self._now = self.sim.sim_time
@@ -94,6 +97,7 @@ class SimulatorNode:
             self._on_time_change,
         )
         self.metrics = PerformanceMetricsPublisher(self.sim)
+        self.scene_markers = SceneMarkers(self.sim, self.lock)
         if self.settings.step_simulation_service:
             self._step_service = rospy.Service("~step_simulation", StepSimulation, self._on_step_simulation)
 
@@ -269,6 +273,8 @@ class SimulatorNode:
         return [interface for interfaces in self.interfaces.values() for interface in interfaces]
 
     def close(self) -> None:
+        if self.scene_markers is not None:
+            self.scene_markers.close()
         if self._step_service is not None:
             self._step_service.shutdown()
         for interface in self._all_interfaces():
@@ -336,9 +342,19 @@ def load_world(node: SimulatorNode, world_name: str) -> None:
         for name in list(node.sim.models):  # the included and plugin-made models' plugins too
             node.add_interface(name, "")
         node._restart_time()  # a world's <state> may start sim time elsewhere than 0
+    publish_user_camera(world.user_camera)
     if warnings:  # one line, at most MAX_SHOWN_WARNINGS of them
         rospy.logwarn("world %s: %s", path, "; ".join(summarise(warnings)))
     rospy.loginfo("loaded world [%s] from %s: models %s", world.name, path, list(node.sim.models))
+
+
+def publish_user_camera(pose: Optional[Pose]) -> None:
+    """~user_camera_pose: the world's <gui><camera><pose> [x, y, z, roll, pitch, yaw] for the viewer's first view;
+    unset where the world has none (the viewer then looks from Gazebo's default)."""
+    if pose is not None:
+        rospy.set_param("~user_camera_pose", list(pose.xyz) + list(pose.rpy))
+    elif rospy.has_param("~user_camera_pose"):
+        rospy.delete_param("~user_camera_pose")
 
 
 def main(overrides: Optional[Dict[str, object]] = None, notes: Sequence[str] = (), claim_sim_time: bool = False) -> int:
@@ -372,6 +388,8 @@ def main(overrides: Optional[Dict[str, object]] = None, notes: Sequence[str] = (
         except (ModelError, WorldError, OSError) as error:
             rospy.logfatal("cannot load world [%s]: %s" % (settings.world_name, error))
             return 1
+    else:
+        publish_user_camera(None)  # no world: an earlier server's first view is not this one's
     if settings.spawn_model_name:
         urdf = rospy.get_param(settings.spawn_robot_description, None)
         if not isinstance(urdf, str):
