@@ -398,15 +398,13 @@ class PhysicsWorld:
         self._pair_cache.clear()
         self._set_ground_surface(self._ground_given or params.ground_surface)
 
-    # --- the ground plane -------------------------------------------------------------
     @property
     def has_ground(self) -> bool:
         """Whether the ground plane is there (a world without a ground plane model has none, as in Gazebo)."""
         return self._has_ground
 
     @property
-    def has_own_ground(self) -> bool:
-        """Whether the ground is the simulator's own (no world loaded), not one a ground plane model placed."""
+    def has_own_ground(self) -> bool:  # the simulator's own (no world loaded), not one a ground plane model placed
         return self._has_ground and self._ground_given is None
 
     def place_ground(
