@@ -12,53 +12,18 @@ import sys
 import tempfile
 import threading
 import unittest
-from typing import List, Tuple
+from typing import List
 
 import numpy as np
 import rospy
 import rostest
 from sensor_msgs.msg import JointState
-from workspace_testing.tool_window import ToolOnScreen, matches, save_png
+from workspace_testing.slider_image import Groove, grooves
+from workspace_testing.tool_window import ToolOnScreen, save_png
 
 JOINTS = ["head_pan", "head_tilt", "wheel_joint", "gripper_extension", "gripper_twin_extension"]
 LIMITS = {"head_pan": (-1.2, 1.5), "head_tilt": (0.0, 0.8), "wheel_joint": (-3.141592653589793, 3.141592653589793),
           "gripper_extension": (-0.1, 0.2)}
-# Qt's Fusion style: a slider groove's border, its filled part (up to the handle) and the rest.
-GROOVE_BORDERS = ((171, 171, 171), (34, 100, 141))
-FILLED, EMPTY = (56, 161, 227), (217, 217, 217)
-MIN_GROOVE_PIXELS = 150
-
-
-class Groove:
-    def __init__(self, row: int, filled: np.ndarray, empty: np.ndarray) -> None:
-        self.row = row
-        self.fraction = filled.size / float(filled.size + empty.size)
-        # the handle (about 14 px wide) starts where the fill ends
-        self.handle_x = int(filled.max()) + 6 if filled.size else int(empty.min()) - 6
-
-
-def grooves(image: np.ndarray) -> List[Groove]:
-    """The horizontal slider grooves on the screen, top to bottom."""
-    border = np.zeros(image.shape[:2], dtype=bool)
-    for colour in GROOVE_BORDERS:
-        border |= matches(image, colour, 6)
-    rows = np.nonzero(border.sum(axis=1) >= MIN_GROOVE_PIXELS)[0]
-    groups: List[List[int]] = []
-    for row in rows:
-        if groups and row - groups[-1][-1] <= 6:
-            groups[-1].append(int(row))
-        else:
-            groups.append([int(row)])
-    found = []
-    for group in groups:
-        middle = (group[0] + group[-1]) // 2
-        filled = np.nonzero(matches(image[middle : middle + 1], FILLED, 25)[0])[0]
-        empty = np.nonzero(matches(image[middle : middle + 1], EMPTY, 10)[0])[0]
-        if filled.size + empty.size >= MIN_GROOVE_PIXELS:  # not a frame or a button
-            found.append(Groove(middle, filled, empty))
-    return found
-
-
 class SlidersWindow(unittest.TestCase):
     def setUp(self) -> None:
         self.timeout = rospy.get_param("~timeout")
@@ -108,7 +73,7 @@ class SlidersWindow(unittest.TestCase):
             # centred: each zero's place in its limits, as valueToSlider puts it
             centred = [(0.0 - low) / (high - low) for low, high in LIMITS.values()]
             head_pan = self.screen_shows(tool, centred)[0]
-            self.xdotool(tool, "mousemove", str(head_pan.handle_x), str(head_pan.row), "click", "1")
+            self.xdotool(tool, "mousemove", str(head_pan.handle), str(head_pan.line), "click", "1")
             self.xdotool(tool, "key", "End")
             self.wait_for_joint("head_pan", 1.5)
             self.screen_shows(tool, [1.0] + centred[1:])
