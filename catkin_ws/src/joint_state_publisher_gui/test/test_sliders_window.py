@@ -22,8 +22,14 @@ from workspace_testing.slider_image import Groove, grooves
 from workspace_testing.tool_window import ToolOnScreen, save_png
 
 JOINTS = ["head_pan", "head_tilt", "wheel_joint", "gripper_extension", "gripper_twin_extension"]
-LIMITS = {"head_pan": (-1.2, 1.5), "head_tilt": (0.0, 0.8), "wheel_joint": (-3.141592653589793, 3.141592653589793),
-          "gripper_extension": (-0.1, 0.2)}
+LIMITS = {
+    "head_pan": (-1.2, 1.5),
+    "head_tilt": (0.0, 0.8),
+    "wheel_joint": (-3.141592653589793, 3.141592653589793),
+    "gripper_extension": (-0.1, 0.2),
+}
+
+
 class SlidersWindow(unittest.TestCase):
     def setUp(self) -> None:
         self.timeout = rospy.get_param("~timeout")

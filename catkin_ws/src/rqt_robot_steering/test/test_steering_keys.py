@@ -101,7 +101,7 @@ class SteeringKeys(unittest.TestCase):
             # as long again as four repeats took: no further zero twist
             time.sleep(repeats_took)  # nothing to wait on: the absence of messages
             with self.changed:
-                self.assertEqual(self.twists[self.twists.index(STOP):], [STOP], "zero sent once only")
+                self.assertEqual(self.twists[self.twists.index(STOP) :], [STOP], "zero sent once only")
             self.keys(tool, "space")
             self.wait_for(lambda: self.twists.count(STOP) == 2, "Space at zero: the zero once more")
             self.screen_shows(tool, 0.0, 0.0)

@@ -21,9 +21,7 @@ def main() -> int:
     except RuntimeError as error:  # no robot_description
         rospy.logfatal("joint_state_publisher_gui: %s", error)
         return 1
-    window = JointStatePublisherGui(
-        "Node: " + rospy.get_name(), jsp, joint_state_publisher.get_param("num_rows", 0)
-    )
+    window = JointStatePublisherGui("Node: " + rospy.get_name(), jsp, joint_state_publisher.get_param("num_rows", 0))
     window.show()
     window.sliderUpdateTrigger.emit()
     # joint_state_publisher's publishing loop; it ends with ROS, and must not keep the process once Qt has ended

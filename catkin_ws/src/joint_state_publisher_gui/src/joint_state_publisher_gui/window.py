@@ -72,7 +72,8 @@ class JointStatePublisherGui(QWidget):
         self.jsp = jsp
         font = QFont("Helvetica", 9, QFont.Bold)
         self.sliders = {
-            name: JointSlider(name, jsp.free_joints[name], font) for name in slider_joints(jsp.joint_list, jsp.free_joints)
+            name: JointSlider(name, jsp.free_joints[name], font)
+            for name in slider_joints(jsp.joint_list, jsp.free_joints)
         }
         self.grid = QGridLayout()
         self.num_rows = num_rows or len(self.sliders)

@@ -15,8 +15,12 @@ class StandIn:
 
     def __init__(self) -> None:
         self.joint_list = ["head_pan", "head_tilt", "wheel_joint", "gripper_extension", "gripper_twin_extension"]
-        limits = {"head_pan": (-1.2, 1.5), "head_tilt": (0.0, 0.8), "wheel_joint": (-math.pi, math.pi),
-                  "gripper_extension": (-0.1, 0.2)}
+        limits = {
+            "head_pan": (-1.2, 1.5),
+            "head_tilt": (0.0, 0.8),
+            "wheel_joint": (-math.pi, math.pi),
+            "gripper_extension": (-0.1, 0.2),
+        }
         self.free_joints = {
             name: {"min": low, "max": high, "zero": 0.0, "position": 0.0} for name, (low, high) in limits.items()
         }

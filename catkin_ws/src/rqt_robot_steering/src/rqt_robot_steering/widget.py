@@ -4,13 +4,14 @@ The twists go out from a Qt timer on the Qt thread; nothing here runs on a ROS t
 from __future__ import annotations
 
 import math
-from typing import List
+from typing import List, Tuple
 
 import rospy
 from geometry_msgs.msg import Twist
 from python_qt_binding.QtCore import Qt, QTimer
 from python_qt_binding.QtGui import QKeySequence
 from python_qt_binding.QtWidgets import (
+    QBoxLayout,
     QDoubleSpinBox,
     QHBoxLayout,
     QLabel,
@@ -70,11 +71,43 @@ def limit_box(tooltip: str, low: float, high: float, value: float) -> QDoubleSpi
     return box
 
 
-def step_button(text: str, tooltip: str) -> QPushButton:
-    button = QPushButton(text)
-    button.setToolTip(tooltip)
-    button.setMaximumSize(50, 50)
-    return button
+class AxisControls:
+    """One speed's slider, its increase/reset/decrease buttons (page steps), limit boxes and current-speed label."""
+
+    def __init__(
+        self, kind: str, unit: str, orientation, button_texts: Tuple[str, str, str], keys: str, low: float, high: float
+    ) -> None:
+        self.unit = unit
+        self.slider = QSlider(orientation)
+        self.slider.setRange(slider_units(low), slider_units(high))
+        self.slider.setSingleStep(SINGLE_STEP)
+        self.slider.setPageStep(PAGE_STEP)
+        self.buttons = []
+        for steps, verb, text, key in zip((1, 0, -1), ("Increase", "Reset", "Decrease"), button_texts, keys):
+            button = QPushButton(text)
+            button.setToolTip("%s %s velocity ([Shift +] %s)" % (verb, kind, key))
+            button.setMaximumSize(50, 50)
+            button.pressed.connect(lambda steps=steps: self.step(steps, strong=True))
+            self.buttons.append(button)
+        self.max_box = limit_box("Maximum %s velocity" % kind, 0.0, LIMIT_BOUND, high)
+        self.max_box.valueChanged.connect(lambda value: self.slider.setMaximum(slider_units(value)))
+        self.label = QLabel("0.0 " + unit)
+        self.label.setToolTip("Current %s velocity" % kind)
+        self.min_box = limit_box("Minimum %s velocity" % kind, -LIMIT_BOUND, 0.0, low)
+        self.min_box.valueChanged.connect(lambda value: self.slider.setMinimum(slider_units(value)))
+
+    def step(self, steps: int, strong: bool) -> None:
+        self.slider.setValue(stepped(self.slider.value(), steps, strong))
+
+    def show_speed(self, value: int) -> None:
+        self.label.setText("%0.2f %s" % (value / SLIDER_FACTOR, self.unit))
+
+    def fill(self, buttons: QBoxLayout, info: QBoxLayout) -> None:
+        """Put the buttons into one box, the limits and the label (maximum first) into the other."""
+        for button in self.buttons:
+            buttons.addWidget(button)
+        for widget in (self.max_box, self.label, self.min_box):
+            info.addWidget(widget)
 
 
 class RobotSteeringWidget(QWidget):
@@ -93,59 +126,38 @@ class RobotSteeringWidget(QWidget):
         top.addWidget(self.topic_line_edit)
         top.addWidget(self.stop_push_button)
 
-        self.x_linear_slider = self._slider(Qt.Vertical, params["default_vx_min"], params["default_vx_max"])
-        self.x_linear_slider.setTickPosition(QSlider.TicksBothSides)
-        linear_buttons = QVBoxLayout()
+        self.linear = AxisControls(
+            "linear", "m/s", Qt.Vertical, ("+", "0", "-"), "WXS", params["default_vx_min"], params["default_vx_max"]
+        )
+        self.linear.slider.setTickPosition(QSlider.TicksBothSides)
+        linear_buttons, linear_info = QVBoxLayout(), QVBoxLayout()
         linear_buttons.setContentsMargins(40, 0, 0, 0)
-        self.linear_buttons = {}
-        for steps, text, tooltip in ((1, "+", "Increase linear velocity ([Shift +] W)"),
-                                     (0, "0", "Reset linear velocity ([Shift +] X)"),
-                                     (-1, "-", "Decrease linear velocity ([Shift +] S)")):
-            self.linear_buttons[steps] = step_button(text, tooltip)
-            linear_buttons.addWidget(self.linear_buttons[steps])
-        self.max_x_linear_double_spin_box = limit_box("Maximum linear velocity", 0.0, LIMIT_BOUND,
-                                                      params["default_vx_max"])
-        self.current_x_linear_label = QLabel("0.0 m/s")
-        self.current_x_linear_label.setToolTip("Current linear velocity")
-        self.min_x_linear_double_spin_box = limit_box("Minimum linear velocity", -LIMIT_BOUND, 0.0,
-                                                      params["default_vx_min"])
-        linear_info = QVBoxLayout()
-        for widget in (self.max_x_linear_double_spin_box, self.current_x_linear_label,
-                       self.min_x_linear_double_spin_box):
-            linear_info.addWidget(widget)
+        self.linear.fill(linear_buttons, linear_info)
         linear = QHBoxLayout()
         linear.addStretch(1)
         linear.addLayout(linear_buttons)
-        linear.addWidget(self.x_linear_slider)
+        linear.addWidget(self.linear.slider)
         linear.addLayout(linear_info)
         linear.addStretch(1)
 
-        self.z_angular_slider = self._slider(Qt.Horizontal, params["default_vw_min"], params["default_vw_max"])
-        self.z_angular_slider.setInvertedAppearance(True)  # positive (turning left) on the left
-        self.z_angular_slider.setTickPosition(QSlider.TicksBelow)
-        angular_buttons = QHBoxLayout()
-        self.angular_buttons = {}
-        for steps, text, tooltip in ((1, "<", "Increase angular velocity ([Shift +] A)"),
-                                     (0, "0", "Reset angular velocity ([Shift +] Z)"),
-                                     (-1, ">", "Decrease angular velocity ([Shift +] D)")):
-            self.angular_buttons[steps] = step_button(text, tooltip)
-            angular_buttons.addWidget(self.angular_buttons[steps])
-        self.max_z_angular_double_spin_box = limit_box("Maximum angular velocity", 0.0, LIMIT_BOUND,
-                                                       params["default_vw_max"])
-        self.current_z_angular_label = QLabel("0.0 rad/s")
-        self.current_z_angular_label.setToolTip("Current angular velocity")
-        self.min_z_angular_double_spin_box = limit_box("Minimum angular velocity", -LIMIT_BOUND, 0.0,
-                                                       params["default_vw_min"])
-        angular_info = QHBoxLayout()
-        # upstream's order, left to right: the maximum (turning left) first
-        for widget in (self.max_z_angular_double_spin_box, self.current_z_angular_label,
-                       self.min_z_angular_double_spin_box):
-            angular_info.addWidget(widget)
+        self.angular = AxisControls(
+            "angular",
+            "rad/s",
+            Qt.Horizontal,
+            ("<", "0", ">"),
+            "AZD",
+            params["default_vw_min"],
+            params["default_vw_max"],
+        )
+        self.angular.slider.setInvertedAppearance(True)  # positive (turning left) on the left
+        self.angular.slider.setTickPosition(QSlider.TicksBelow)
+        angular_buttons, angular_info = QHBoxLayout(), QHBoxLayout()
+        self.angular.fill(angular_buttons, angular_info)
 
         layout = QVBoxLayout(self)
         layout.addLayout(top)
         layout.addLayout(linear)
-        layout.addWidget(self.z_angular_slider)
+        layout.addWidget(self.angular.slider)
         layout.addLayout(angular_buttons)
         layout.addLayout(angular_info)
 
@@ -155,35 +167,17 @@ class RobotSteeringWidget(QWidget):
         self._timer.timeout.connect(self._send_twist)
         self._timer.start(PUBLISH_PERIOD_MS)
 
-    @staticmethod
-    def _slider(orientation, low: float, high: float) -> QSlider:
-        slider = QSlider(orientation)
-        slider.setRange(slider_units(low), slider_units(high))
-        slider.setSingleStep(SINGLE_STEP)
-        slider.setPageStep(PAGE_STEP)
-        return slider
-
     def _connect(self) -> None:
         self.topic_line_edit.textChanged.connect(self._on_topic_changed)
         self.stop_push_button.pressed.connect(self._on_stop)
-        self.x_linear_slider.valueChanged.connect(self._on_linear_changed)
-        self.z_angular_slider.valueChanged.connect(self._on_angular_changed)
-        sliders = {"linear": self.x_linear_slider, "angular": self.z_angular_slider}
-        for steps, button in self.linear_buttons.items():
-            button.pressed.connect(lambda steps=steps: self._step(self.x_linear_slider, steps, strong=True))
-        for steps, button in self.angular_buttons.items():
-            button.pressed.connect(lambda steps=steps: self._step(self.z_angular_slider, steps, strong=True))
-        for box, slider, setter in (
-            (self.max_x_linear_double_spin_box, self.x_linear_slider, QSlider.setMaximum),
-            (self.min_x_linear_double_spin_box, self.x_linear_slider, QSlider.setMinimum),
-            (self.max_z_angular_double_spin_box, self.z_angular_slider, QSlider.setMaximum),
-            (self.min_z_angular_double_spin_box, self.z_angular_slider, QSlider.setMinimum),
-        ):
-            box.valueChanged.connect(lambda value, slider=slider, setter=setter: setter(slider, slider_units(value)))
+        for axis in (self.linear, self.angular):
+            axis.slider.valueChanged.connect(axis.show_speed)
+            axis.slider.valueChanged.connect(self._send_twist)
+        axes = {"linear": self.linear, "angular": self.angular}
         self._shortcuts = []
         for key, (which, steps) in SHORTCUTS.items():
             for strong, sequence in ((False, key), (True, "Shift+" + key)):
-                self._add_shortcut(sequence, lambda s=sliders[which], n=steps, p=strong: self._step(s, n, p))
+                self._add_shortcut(sequence, lambda axis=axes[which], n=steps, p=strong: axis.step(n, p))
         for sequence in ("Space", "Shift+Space"):
             self._add_shortcut(sequence, self._on_stop)
 
@@ -193,34 +187,23 @@ class RobotSteeringWidget(QWidget):
         shortcut.activated.connect(action)
         self._shortcuts.append(shortcut)
 
-    def _step(self, slider: QSlider, steps: int, strong: bool) -> None:
-        slider.setValue(stepped(slider.value(), steps, strong))
-
     def _on_topic_changed(self, topic: str) -> None:
         self._unregister()
         if topic:
             self._publisher = rospy.Publisher(topic, Twist, queue_size=10)
 
     def _on_stop(self) -> None:
-        if self.x_linear_slider.value() == 0 and self.z_angular_slider.value() == 0:
+        if self.linear.slider.value() == 0 and self.angular.slider.value() == 0:
             self._gate.resend_zero()
             self._send_twist()
         else:
-            self.x_linear_slider.setValue(0)
-            self.z_angular_slider.setValue(0)
-
-    def _on_linear_changed(self, value: int) -> None:
-        self.current_x_linear_label.setText("%0.2f m/s" % (value / SLIDER_FACTOR))
-        self._send_twist()
-
-    def _on_angular_changed(self, value: int) -> None:
-        self.current_z_angular_label.setText("%0.2f rad/s" % (value / SLIDER_FACTOR))
-        self._send_twist()
+            self.linear.slider.setValue(0)
+            self.angular.slider.setValue(0)
 
     def _send_twist(self) -> None:
         if self._publisher is None:
             return
-        speeds = self._gate.next_twist(self.x_linear_slider.value(), self.z_angular_slider.value())
+        speeds = self._gate.next_twist(self.linear.slider.value(), self.angular.slider.value())
         if speeds is not None:
             twist = Twist()
             twist.linear.x, twist.angular.z = speeds
