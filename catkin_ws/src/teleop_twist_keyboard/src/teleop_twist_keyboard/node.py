@@ -33,27 +33,27 @@ class TwistRepeater(threading.Thread):
         self._period = 1.0 / rate if rate > 0.0 else None
         self._twist = Twist()
         self._changed = threading.Condition()
+        self._pending = False  # a twist came while this thread was publishing: not to be missed
         self._done = False
         self.start()
 
     def update(self, twist: Twist) -> None:
         with self._changed:
-            self._twist = twist
+            self._twist, self._pending = twist, True
             self._changed.notify()
 
     def stop(self) -> None:
         """Publish a zero twist last, then end."""
         with self._changed:
-            self._done = True
-            self._twist = Twist()
+            self._done, self._twist, self._pending = True, Twist(), True
             self._changed.notify()
         self.join()
 
     def run(self) -> None:
         while True:
             with self._changed:
-                self._changed.wait(self._period)
-                twist, done = self._twist, self._done
+                self._changed.wait_for(lambda: self._pending, self._period)
+                twist, done, self._pending = self._twist, self._done, False
             self._publisher.publish(twist)
             if done:
                 return
@@ -116,6 +116,7 @@ def main() -> int:
     key_timeout = params["key_timeout"] or None
     try:
         wait_for_subscriber(publisher)
+        repeater.update(to_twist(teleop))  # a zero twist first, as upstream's
         print(USAGE)
         print(speeds_line(teleop.speed, teleop.turn), flush=True)
         while not teleop.quit and not rospy.is_shutdown():
