@@ -18,7 +18,7 @@ TIME_EPSILON = 1e-9
 
 @dataclass(frozen=True)
 class RosControlConfig:
-    """robotNamespace (default: the model's name), robotParam (robot_description), robotSimType, controlPeriod
+    """robotNamespace (default: the model's name; empty: the root), robotParam (robot_description), robotSimType, controlPeriod
     (default and minimum: the physics step), legacyModeNS (read, no effect in Noetic), eStopTopic."""
 
     robot_namespace: str
@@ -52,7 +52,8 @@ class RosControlConfig:
                     f"Desired controller update period ({period} s) is slower than the gazebo simulation period "
                     f"({physics_step} s)."
                 )
-        namespace = params.get("robotNamespace", model_name).strip() or model_name
+        # GazeboRosControlPlugin::Load: the element's value whenever it exists (empty: the root), else the model's name
+        namespace = params.get("robotNamespace", model_name).strip()
         return cls(
             robot_namespace=namespace,
             robot_param=params.get("robotParam", "robot_description").strip(),

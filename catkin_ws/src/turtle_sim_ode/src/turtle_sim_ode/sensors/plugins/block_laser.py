@@ -4,12 +4,12 @@ defaults, and PutLaserData's points; the rays are sensors.lidar's (one ray per s
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, List, Tuple
+from typing import Callable, List, Optional, Tuple
 from xml.etree.ElementTree import Element
 
 import numpy as np
 
-from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.models.text import ModelError, read_number, robot_namespace_tag
 from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid, sensor_plugin
 
 SENSOR_PLUGINS = {"libgazebo_ros_block_laser.so": ("ray", "gpu_ray")}
@@ -22,7 +22,7 @@ class BlockLaserConfig(RayGridConfig):
     topic: str = "/world"  # sic: Load's default
     frame: str = "/world"
     gaussian_noise: float = 0.0
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> BlockLaserConfig:
@@ -34,7 +34,7 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Bl
         topic=params.get("topicName") or "/world",
         frame=params.get("frameName") or "/world",
         gaussian_noise=read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
-        robot_namespace=params.get("robotNamespace") or "",
+        robot_namespace=robot_namespace_tag(params),
     )
     if config.rays > MAX_RAYS:
         raise ModelError(f"{what}: {config.rays} rays, more than {MAX_RAYS}")

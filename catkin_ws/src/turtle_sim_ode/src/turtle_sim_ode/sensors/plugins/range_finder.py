@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import List
+from typing import List, Optional
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.models.text import ModelError, read_number, robot_namespace_tag
 from turtle_sim_ode.sensors.sensor_element import RayGridConfig, ray_grid, sensor_plugin
 
 SENSOR_PLUGINS = {"libgazebo_ros_range.so": ("ray", "gpu_ray")}
@@ -24,7 +24,7 @@ class RangeConfig(RayGridConfig):
     field_of_view: float = 0.05
     gaussian_noise: float = 0.0
     plugin_rate: float = 0.0  # <updateRate>: at most this often (0: every scan)
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> RangeConfig:
@@ -39,7 +39,7 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ra
         field_of_view=read_number(params.get("fov"), f"{plugin_what} <fov>", 0.05),
         gaussian_noise=read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
         plugin_rate=read_number(params.get("updateRate"), f"{plugin_what} <updateRate>", 0.0, 0.0),
-        robot_namespace=params.get("robotNamespace") or "",
+        robot_namespace=robot_namespace_tag(params),
     )
     if config.rays > MAX_RAYS:
         raise ModelError(f"{what}: {config.rays} rays, more than {MAX_RAYS}")
