@@ -24,6 +24,7 @@ from control_helpers import Rig, simulated
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from turtle_sim_ode.control.plugin import unstable_velocity_pids
 from turtle_sim_ode.world.simulation import Simulation
 
 MODELS = Path(PACKAGE_ROOT) / "test" / "models"
@@ -105,3 +106,16 @@ def test_the_explicit_velocity_pid_converges_only_below_p_dt_over_inertia_2(iner
         assert error < 1e-6
     else:
         assert error > 0.5  # chattering between the effort limits (100 N m)
+
+
+def test_a_velocity_pid_the_explicit_loop_cannot_hold_is_warned_about() -> None:
+    """control.plugin.unstable_velocity_pids, as the ROS side logs it at spawn: p dt / I >= 2 on a wheel."""
+    for inertia, warned in (("0.098", False), ("0.049", True)):
+        urdf = SMB_CONTROL.replace('izz="0.098"', f'izz="{inertia}"')
+        sim, control = simulated(urdf, "smb", 0.2, {}, PID_GAINS)
+        inertias = {name: sim.models["smb"].joint(name).moved_inertia() for name in WHEELS}
+        warnings = unstable_velocity_pids(control.hw, inertias, sim.physics.time_step)
+        assert len(warnings) == (4 if warned else 0), warnings
+        assert all(
+            "pid_gains p 100 at 0.001 s steps" in warning and "(p dt / I = 2." in warning for warning in warnings
+        )

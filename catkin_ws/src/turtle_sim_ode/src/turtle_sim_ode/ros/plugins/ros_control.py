@@ -29,7 +29,7 @@ from controller_manager_msgs.srv import (
 from std_msgs.msg import Bool
 
 from turtle_sim_ode.control.ode_joint import OdeSimJoint
-from turtle_sim_ode.control.plugin import RosControl, RosControlConfig
+from turtle_sim_ode.control.plugin import RosControl, RosControlConfig, unstable_velocity_pids
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, subscriber
 from turtle_sim_ode.ros.plugins.ros_control_topics import ControllerTopics
 from turtle_sim_ode.world.plugins.ros_control import RosControlPluginConfig
@@ -75,6 +75,9 @@ class RosControlInterface(Periodic):
         self.control = RosControl(
             settings, model.robot, sim_joints, robot_params if isinstance(robot_params, dict) else {}, _log
         )
+        inertias = {name: joint.handle.moved_inertia() for name, joint in sim_joints.items()}
+        for warning in unstable_velocity_pids(self.control.hw, inertias, context.sim.physics.time_step):
+            _log("warn", warning)
         self.lock = threading.Lock()
         self.topics: Dict[str, ControllerTopics] = {}
         base = self.namespace.rstrip("/") + "/controller_manager/"
