@@ -72,8 +72,12 @@ def read_key(fd: int, saved: list, timeout: Optional[float]) -> str:
 def read_params() -> dict:
     """~speed, ~turn, ~repeat_rate, ~key_timeout with upstream's defaults; rospy.ROSException naming a bad one."""
     params = {}
-    for name, default, least in (("speed", 0.5, None), ("turn", 1.0, None), ("repeat_rate", 0.0, 0.0),
-                                 ("key_timeout", 0.0, 0.0)):
+    for name, default, least in (
+        ("speed", 0.5, None),
+        ("turn", 1.0, None),
+        ("repeat_rate", 0.0, 0.0),
+        ("key_timeout", 0.0, 0.0),
+    ):
         value = rospy.get_param("~" + name, default)
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise rospy.ROSException("~%s [%r] is not a finite number" % (name, value))

@@ -20,7 +20,14 @@ def test_the_key_layout_is_upstreams():
     assert MOVES["t"] == (0, 0, 1, 0) and MOVES["b"] == (0, 0, -1, 0)
     assert len(MOVES) == 18 and "k" not in MOVES and "K" not in MOVES
     assert SPEED_STEPS == {"q": (1.1, 1.1), "z": (0.9, 0.9), "w": (1.1, 1), "x": (0.9, 1), "e": (1, 1.1), "c": (1, 0.9)}
-    for row in ("   u    i    o", "   j    k    l", "   m    ,    .", "   U    I    O", "   J    K    L", "   M    <    >"):
+    for row in (
+        "   u    i    o",
+        "   j    k    l",
+        "   m    ,    .",
+        "   U    I    O",
+        "   J    K    L",
+        "   M    <    >",
+    ):
         assert row in USAGE.splitlines()
 
 

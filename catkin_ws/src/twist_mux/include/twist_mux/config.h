@@ -16,7 +16,7 @@ namespace twist_mux
 // A bad entry; what() names the parameter, the entry and the value.
 class ConfigError : public std::runtime_error
 {
-public:
+ public:
   using std::runtime_error::runtime_error;
 };
 

@@ -32,7 +32,7 @@ struct Input
 
 class MuxCore
 {
-public:
+ public:
   // Both return the new input's index.
   size_t addVelocity(const InputSpec& spec);
   size_t addLock(const InputSpec& spec);
@@ -60,7 +60,7 @@ public:
     return locks_;
   }
 
-private:
+ private:
   std::vector<Input> velocities_;
   std::vector<Input> locks_;
 };

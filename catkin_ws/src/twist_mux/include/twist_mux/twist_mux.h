@@ -16,11 +16,11 @@ namespace twist_mux
 {
 class TwistMux
 {
-public:
+ public:
   // Reads ~topics and ~locks; throws ConfigError on a bad entry.
   TwistMux(ros::NodeHandle& nh, ros::NodeHandle& private_nh);
 
-private:
+ private:
   std::vector<InputSpec> readInputs(ros::NodeHandle& private_nh, const std::string& param_name) const;
   void velocityCallback(size_t index, const geometry_msgs::Twist::ConstPtr& msg);
   void lockCallback(size_t index, const std_msgs::Bool::ConstPtr& msg);
