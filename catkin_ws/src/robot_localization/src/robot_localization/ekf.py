@@ -227,10 +227,3 @@ def passes_mahalanobis_gate(innovation: np.ndarray, inverse_covariance: np.ndarr
         return True
     return float(innovation @ inverse_covariance @ innovation) < sigmas * sigmas
 
-
-def covariance_is_valid(covariance: np.ndarray, tolerance: float = 1e-9) -> bool:
-    """Symmetric and positive definite (used by tests and by the node's NaN check)."""
-    if not np.all(np.isfinite(covariance)) or not np.allclose(covariance, covariance.T, atol=tolerance):
-        return False
-    return bool(np.all(np.linalg.eigvalsh(0.5 * (covariance + covariance.T)) > 0.0))
-
