@@ -45,9 +45,20 @@ class Circle(unittest.TestCase):
     @classmethod
     def setUpClass(cls) -> None:
         rospy.init_node("circle")
-        cls.p = {name: rospy.get_param("~" + name) for name in (
-            "duration", "speed", "yaw_rate", "speed_noise", "orientation_noise", "position_tolerance",
-            "yaw_tolerance", "speed_tolerance", "connect_timeout")}  # fmt: skip
+        cls.p = {
+            name: rospy.get_param("~" + name)
+            for name in (
+                "duration",
+                "speed",
+                "yaw_rate",
+                "speed_noise",
+                "orientation_noise",
+                "position_tolerance",
+                "yaw_tolerance",
+                "speed_tolerance",
+                "connect_timeout",
+            )
+        }
         cls.lock = threading.Lock()
         cls.estimates = []
         cls.clock = rospy.Publisher("/clock", Clock, queue_size=10)
@@ -141,8 +152,13 @@ class Circle(unittest.TestCase):
             worst_yaw = max(worst_yaw, abs(wrap(yaw_of(estimate.pose.pose.orientation) - yaw)))
             worst_speed = max(worst_speed, abs(estimate.twist.twist.linear.x - self.p["speed"]))
             self.assertEqual((p.z, estimate.pose.pose.orientation.x, estimate.pose.pose.orientation.y), (0, 0, 0))
-        rospy.loginfo("circle: worst position error %.4f m, yaw %.4f rad, speed %.4f m/s over %d estimates",
-                      worst_position, worst_yaw, worst_speed, len(estimates))  # fmt: skip
+        rospy.loginfo(
+            "circle: worst position error %.4f m, yaw %.4f rad, speed %.4f m/s over %d estimates",
+            worst_position,
+            worst_yaw,
+            worst_speed,
+            len(estimates),
+        )
         self.assertLess(worst_position, self.p["position_tolerance"])
         self.assertLess(worst_yaw, self.p["yaw_tolerance"])
         self.assertLess(worst_speed, self.p["speed_tolerance"])

@@ -9,7 +9,7 @@ to their time stamp and correct.
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from typing import List, Sequence
 
 import numpy as np
 
@@ -20,9 +20,22 @@ X, Y, Z, ROLL, PITCH, YAW, VX, VY, VZ, VROLL, VPITCH, VYAW, AX, AY, AZ = range(S
 ANGLES = (ROLL, PITCH, YAW)
 POSE_SLICE, TWIST_SLICE, ACCELERATION_SLICE = slice(X, YAW + 1), slice(VX, VYAW + 1), slice(AX, AZ + 1)
 STATE_NAMES = (
-    "X", "Y", "Z", "ROLL", "PITCH", "YAW", "X_VELOCITY", "Y_VELOCITY", "Z_VELOCITY", "ROLL_VELOCITY",
-    "PITCH_VELOCITY", "YAW_VELOCITY", "X_ACCELERATION", "Y_ACCELERATION", "Z_ACCELERATION",
-)  # fmt: skip
+    "X",
+    "Y",
+    "Z",
+    "ROLL",
+    "PITCH",
+    "YAW",
+    "X_VELOCITY",
+    "Y_VELOCITY",
+    "Z_VELOCITY",
+    "ROLL_VELOCITY",
+    "PITCH_VELOCITY",
+    "YAW_VELOCITY",
+    "X_ACCELERATION",
+    "Y_ACCELERATION",
+    "Z_ACCELERATION",
+)
 # FilterBase::reset: the process noise used when process_noise_covariance is not given.
 DEFAULT_PROCESS_NOISE = np.diag(
     [0.05, 0.05, 0.06, 0.03, 0.03, 0.06, 0.025, 0.025, 0.04, 0.01, 0.01, 0.02, 0.01, 0.01, 0.015]
@@ -151,12 +164,9 @@ class Ekf:
         self.covariance = j @ self.covariance @ j.T + delta * noise
 
     def correct(self, measurement: Measurement) -> bool:
-        """Ekf::correct: Kalman update of the measured, finite entries; False if the Mahalanobis gate refused it."""
-        indices = [
-            i
-            for i, used in enumerate(measurement.update_vector)
-            if used and math.isfinite(measurement.values[i])
-        ]
+        """Ekf::correct: Kalman update of the measured, finite entries; False if the Mahalanobis gate refused it
+        (or the innovation covariance cannot be inverted, where Eigen would fill the state with NaN)."""
+        indices = measured_indices(measurement)
         if not indices:
             return True
         h = np.zeros((len(indices), STATE_SIZE))
@@ -165,7 +175,10 @@ class Ekf:
         diagonal = np.abs(np.diag(r))  # a negative variance is taken as its absolute value
         np.fill_diagonal(r, np.maximum(diagonal, MIN_MEASUREMENT_VARIANCE))
         pht = self.covariance @ h.T
-        hphr_inverse = np.linalg.inv(h @ pht + r)
+        try:
+            hphr_inverse = np.linalg.inv(h @ pht + r)
+        except np.linalg.LinAlgError:
+            return False
         gain = pht @ hphr_inverse
         innovation = measurement.values[indices] - self.state[indices]
         for row, index in enumerate(indices):
@@ -189,7 +202,8 @@ class Ekf:
                 self.predict(validate_delta(delta))
             self.correct(measurement)
         else:
-            used = np.array(measurement.update_vector, dtype=bool)
+            used = np.zeros(STATE_SIZE, dtype=bool)
+            used[measured_indices(measurement)] = True
             self.state[used] = measurement.values[used]
             both = np.outer(used, used)
             self.covariance[both] = measurement.covariance[both]
@@ -206,6 +220,12 @@ class Ekf:
     def wrap_state_angles(self) -> None:
         for index in ANGLES:
             self.state[index] = normalize_angle(self.state[index])
+
+
+def measured_indices(measurement: Measurement) -> List[int]:
+    """The entries a measurement updates: those in its update vector with a finite value (NaN and inf are left
+    out, as Ekf::correct does)."""
+    return [i for i, used in enumerate(measurement.update_vector) if used and math.isfinite(measurement.values[i])]
 
 
 def validate_delta(delta: float) -> float:
@@ -226,4 +246,3 @@ def passes_mahalanobis_gate(innovation: np.ndarray, inverse_covariance: np.ndarr
     if math.isinf(sigmas):
         return True
     return float(innovation @ inverse_covariance @ innovation) < sigmas * sigmas
-

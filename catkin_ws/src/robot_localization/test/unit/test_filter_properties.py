@@ -34,11 +34,15 @@ def params(two_d_mode: bool) -> dict:
     everything = [True] * 15
     return {
         "two_d_mode": two_d_mode,
-        "odom0": "odom", "odom0_config": [False] * 6 + [True, True, True, False, False, True] + [False] * 3,
-        "imu0": "imu", "imu0_config": everything, "imu0_differential": True,
+        "odom0": "odom",
+        "odom0_config": [False] * 6 + [True, True, True, False, False, True] + [False] * 3,
+        "imu0": "imu",
+        "imu0_config": everything,
+        "imu0_differential": True,
         "imu0_remove_gravitational_acceleration": True,
-        "pose0": "pose", "pose0_config": [True, True, True, True, True, True] + [False] * 9,
-    }  # fmt: skip
+        "pose0": "pose",
+        "pose0_config": [True, True, True, True, True, True] + [False] * 9,
+    }
 
 
 def lookup(target: str, source: str, stamp: float):
@@ -65,8 +69,16 @@ def feed(loc: Localizer, item, time: float) -> None:
         empty = PoseData(time, "odom", (0, 0, 0), (0, 0, 0, 1), [0.0] * 36)
         loc.odometry(odom, empty, twist, "base_link")
     elif kind == "imu":
-        data = ImuData(time, "imu_link", rpy_to_quaternion(*a), covariance3, (0.1 * b, -0.1 * b, b), covariance3,
-                       (b, 0.0, 9.80665), covariance3)  # fmt: skip
+        data = ImuData(
+            time,
+            "imu_link",
+            rpy_to_quaternion(*a),
+            covariance3,
+            (0.1 * b, -0.1 * b, b),
+            covariance3,
+            (b, 0.0, 9.80665),
+            covariance3,
+        )
         loc.imu(imu, data)
     else:
         loc.pose(pose, PoseData(time, "odom", (a[0], a[1], 0.0), rpy_to_quaternion(0, 0, a[2]), covariance6))
@@ -114,8 +126,69 @@ def test_constant_true_state_is_reached(truth, start, variance):
         still = TwistData(time, "base_link", (0, 0, 0), (0, 0, 0), (np.eye(6) * 1e-4).flatten().tolist())
         loc.odometry(odom, empty._replace(stamp=time), still, "base_link")
         estimate = loc.update(time)
-    error = [estimate.state[X] - truth[0], estimate.state[Y] - truth[1], math.remainder(estimate.state[YAW] - truth[2],
-             2 * math.pi)]  # fmt: skip
+    error = [
+        estimate.state[X] - truth[0],
+        estimate.state[Y] - truth[1],
+        math.remainder(estimate.state[YAW] - truth[2], 2 * math.pi),
+    ]
     initial = max(abs(start[0] - truth[0]), abs(start[1] - truth[1]), 1.0)
     assert max(abs(e) for e in error) < 1e-3 * initial, error
     assert abs(estimate.state[VX]) < 1e-3 and abs(estimate.state[VYAW]) < 1e-3
+
+
+non_finite = st.sampled_from([math.nan, math.inf, -math.inf])
+finite_or_not = st.one_of(st.floats(-10.0, 10.0), non_finite)
+any_number = st.floats(allow_nan=True, allow_infinity=True)
+
+
+def raw_inputs(numbers):
+    """One message of each kind with numbers (values, quaternion components, covariances) drawn from `numbers`."""
+    vector = st.tuples(numbers, numbers, numbers)
+    quaternion = st.tuples(numbers, numbers, numbers, numbers)
+    return st.tuples(st.sampled_from(["odom", "imu", "pose"]), steps, vector, quaternion, numbers)
+
+
+def feed_raw(loc: Localizer, item, time: float) -> None:
+    kind, _, vector, quaternion, variance = item
+    covariance6, covariance3 = [variance] * 36, [variance] * 9
+    if kind == "odom":
+        empty = PoseData(time, "odom", (0, 0, 0), (0, 0, 0, 1), [0.0] * 36)
+        loc.odometry(
+            loc.config.sensors[0], empty, TwistData(time, "base_link", vector, vector, covariance6), "base_link"
+        )
+    elif kind == "imu":
+        data = ImuData(time, "imu_link", quaternion, covariance3, vector, covariance3, vector, covariance3)
+        loc.imu(loc.config.sensors[2], data)
+    else:
+        loc.pose(loc.config.sensors[1], PoseData(time, "odom", vector, quaternion, covariance6))
+
+
+def run_with(bad, good) -> Localizer:
+    loc = Localizer(Config(params(False)), lookup, now=0.0)
+    time = 0.0
+    with np.errstate(all="ignore"):
+        for item in bad:
+            time += item[1]
+            feed_raw(loc, item, time)
+            loc.update(time)
+        for item in good:
+            time += item[1]
+            feed(loc, item, time)
+            loc.update(time)
+    return loc
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+@given(bad=st.lists(raw_inputs(finite_or_not), min_size=1, max_size=10), good=st.lists(inputs, max_size=10))
+def test_non_finite_numbers_are_left_out(bad, good):
+    """NaN and infinities in values, quaternions and covariances: left out (values) or the message dropped
+    (covariances), so the estimate stays finite."""
+    loc = run_with(bad, good)
+    assert np.all(np.isfinite(loc.filter.state)) and np.all(np.isfinite(loc.filter.covariance))
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+@given(bad=st.lists(raw_inputs(any_number), min_size=1, max_size=10), good=st.lists(inputs, max_size=10))
+def test_any_numbers_never_raise(bad, good):
+    """Any floats, 1e308 included (whose products overflow, as upstream's do): the filter never raises."""
+    run_with(bad, good)
