@@ -9,11 +9,11 @@ to their time stamp and correct.
 from __future__ import annotations
 
 import math
-from typing import List, Sequence
+from typing import List, NamedTuple, Sequence
 
 import numpy as np
 
-from robot_localization.rotations import normalize_angle
+from robot_localization.rotations import normalize_angle, rpy_to_matrix
 
 STATE_SIZE = 15
 X, Y, Z, ROLL, PITCH, YAW, VX, VY, VZ, VROLL, VPITCH, VYAW, AX, AY, AZ = range(STATE_SIZE)
@@ -66,24 +66,41 @@ class Measurement:
         self.topic = topic
 
 
-def transfer_function(state: np.ndarray, delta: float) -> np.ndarray:
-    """Ekf::predict's transferFunction_: x(t + delta) = F x(t), body velocities rotated into the world."""
-    roll, pitch, yaw = state[ROLL], state[PITCH], state[YAW]
-    sp, cp = math.sin(pitch), math.cos(pitch)
-    sr, cr = math.sin(roll), math.cos(roll)
-    sy, cy = math.sin(yaw), math.cos(yaw)
-    cpi = 1.0 / cp
-    tp = sp * cpi
-    f = np.eye(STATE_SIZE)
-    body_to_world = (
-        (X, (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr)),
-        (Y, (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr)),
-        (Z, (-sp, cp * sr, cp * cr)),
+class Trigonometry(NamedTuple):
+    """The sines and cosines of the state's angles Ekf::predict uses (cpi = 1 / cos(pitch), tp = tan(pitch))."""
+
+    sr: float
+    cr: float
+    sp: float
+    cp: float
+    sy: float
+    cy: float
+    cpi: float
+    tp: float
+
+
+def trigonometry(state: np.ndarray) -> Trigonometry:
+    sp, cp = math.sin(state[PITCH]), math.cos(state[PITCH])
+    return Trigonometry(
+        math.sin(state[ROLL]),
+        math.cos(state[ROLL]),
+        sp,
+        cp,
+        math.sin(state[YAW]),
+        math.cos(state[YAW]),
+        1 / cp,
+        sp / cp,
     )
-    for row, coefficients in body_to_world:
-        for column, coefficient in enumerate(coefficients):
-            f[row, VX + column] = coefficient * delta
-            f[row, AX + column] = 0.5 * coefficient * delta * delta
+
+
+def transfer_function(state: np.ndarray, delta: float) -> np.ndarray:
+    """Ekf::predict's transferFunction_: x(t + delta) = F x(t); the body velocities and accelerations turned into
+    the world by the rotation of roll, pitch and yaw (its rows are the coefficients upstream writes out)."""
+    sr, cr, _, _, _, _, cpi, tp = trigonometry(state)
+    body_to_world = rpy_to_matrix(state[ROLL], state[PITCH], state[YAW])
+    f = np.eye(STATE_SIZE)
+    f[X : Z + 1, VX : VZ + 1] = body_to_world * delta
+    f[X : Z + 1, AX : AZ + 1] = body_to_world * 0.5 * delta * delta
     f[ROLL, VROLL] = delta
     f[ROLL, VPITCH] = sr * tp * delta
     f[ROLL, VYAW] = cr * tp * delta
@@ -97,12 +114,7 @@ def transfer_function(state: np.ndarray, delta: float) -> np.ndarray:
 
 def transfer_function_jacobian(state: np.ndarray, delta: float) -> np.ndarray:
     """Ekf::predict's transferFunctionJacobian_: F plus the derivatives of the rotated terms by roll, pitch, yaw."""
-    roll, pitch, yaw = state[ROLL], state[PITCH], state[YAW]
-    sp, cp = math.sin(pitch), math.cos(pitch)
-    sr, cr = math.sin(roll), math.cos(roll)
-    sy, cy = math.sin(yaw), math.cos(yaw)
-    cpi = 1.0 / cp
-    tp = sp * cpi
+    sr, cr, sp, cp, sy, cy, cpi, tp = trigonometry(state)
     velocity, acceleration = state[VX : VZ + 1], state[AX : AZ + 1]
     pitch_rate, yaw_rate = state[VPITCH], state[VYAW]
     half_dt2 = 0.5 * delta * delta
