@@ -9,20 +9,33 @@ to their time stamp and correct.
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from typing import List, NamedTuple, Sequence
 
 import numpy as np
 
-from robot_localization.rotations import normalize_angle
+from robot_localization.rotations import normalize_angle, rpy_to_matrix
 
 STATE_SIZE = 15
 X, Y, Z, ROLL, PITCH, YAW, VX, VY, VZ, VROLL, VPITCH, VYAW, AX, AY, AZ = range(STATE_SIZE)
 ANGLES = (ROLL, PITCH, YAW)
 POSE_SLICE, TWIST_SLICE, ACCELERATION_SLICE = slice(X, YAW + 1), slice(VX, VYAW + 1), slice(AX, AZ + 1)
 STATE_NAMES = (
-    "X", "Y", "Z", "ROLL", "PITCH", "YAW", "X_VELOCITY", "Y_VELOCITY", "Z_VELOCITY", "ROLL_VELOCITY",
-    "PITCH_VELOCITY", "YAW_VELOCITY", "X_ACCELERATION", "Y_ACCELERATION", "Z_ACCELERATION",
-)  # fmt: skip
+    "X",
+    "Y",
+    "Z",
+    "ROLL",
+    "PITCH",
+    "YAW",
+    "X_VELOCITY",
+    "Y_VELOCITY",
+    "Z_VELOCITY",
+    "ROLL_VELOCITY",
+    "PITCH_VELOCITY",
+    "YAW_VELOCITY",
+    "X_ACCELERATION",
+    "Y_ACCELERATION",
+    "Z_ACCELERATION",
+)
 # FilterBase::reset: the process noise used when process_noise_covariance is not given.
 DEFAULT_PROCESS_NOISE = np.diag(
     [0.05, 0.05, 0.06, 0.03, 0.03, 0.06, 0.025, 0.025, 0.04, 0.01, 0.01, 0.02, 0.01, 0.01, 0.015]
@@ -53,24 +66,41 @@ class Measurement:
         self.topic = topic
 
 
-def transfer_function(state: np.ndarray, delta: float) -> np.ndarray:
-    """Ekf::predict's transferFunction_: x(t + delta) = F x(t), body velocities rotated into the world."""
-    roll, pitch, yaw = state[ROLL], state[PITCH], state[YAW]
-    sp, cp = math.sin(pitch), math.cos(pitch)
-    sr, cr = math.sin(roll), math.cos(roll)
-    sy, cy = math.sin(yaw), math.cos(yaw)
-    cpi = 1.0 / cp
-    tp = sp * cpi
-    f = np.eye(STATE_SIZE)
-    body_to_world = (
-        (X, (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr)),
-        (Y, (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr)),
-        (Z, (-sp, cp * sr, cp * cr)),
+class Trigonometry(NamedTuple):
+    """The sines and cosines of the state's angles Ekf::predict uses (cpi = 1 / cos(pitch), tp = tan(pitch))."""
+
+    sr: float
+    cr: float
+    sp: float
+    cp: float
+    sy: float
+    cy: float
+    cpi: float
+    tp: float
+
+
+def trigonometry(state: np.ndarray) -> Trigonometry:
+    sp, cp = math.sin(state[PITCH]), math.cos(state[PITCH])
+    return Trigonometry(
+        math.sin(state[ROLL]),
+        math.cos(state[ROLL]),
+        sp,
+        cp,
+        math.sin(state[YAW]),
+        math.cos(state[YAW]),
+        1 / cp,
+        sp / cp,
     )
-    for row, coefficients in body_to_world:
-        for column, coefficient in enumerate(coefficients):
-            f[row, VX + column] = coefficient * delta
-            f[row, AX + column] = 0.5 * coefficient * delta * delta
+
+
+def transfer_function(state: np.ndarray, delta: float) -> np.ndarray:
+    """Ekf::predict's transferFunction_: x(t + delta) = F x(t); the body velocities and accelerations turned into
+    the world by the rotation of roll, pitch and yaw (its rows are the coefficients upstream writes out)."""
+    sr, cr, _, _, _, _, cpi, tp = trigonometry(state)
+    body_to_world = rpy_to_matrix(state[ROLL], state[PITCH], state[YAW])
+    f = np.eye(STATE_SIZE)
+    f[X : Z + 1, VX : VZ + 1] = body_to_world * delta
+    f[X : Z + 1, AX : AZ + 1] = body_to_world * 0.5 * delta * delta
     f[ROLL, VROLL] = delta
     f[ROLL, VPITCH] = sr * tp * delta
     f[ROLL, VYAW] = cr * tp * delta
@@ -84,12 +114,7 @@ def transfer_function(state: np.ndarray, delta: float) -> np.ndarray:
 
 def transfer_function_jacobian(state: np.ndarray, delta: float) -> np.ndarray:
     """Ekf::predict's transferFunctionJacobian_: F plus the derivatives of the rotated terms by roll, pitch, yaw."""
-    roll, pitch, yaw = state[ROLL], state[PITCH], state[YAW]
-    sp, cp = math.sin(pitch), math.cos(pitch)
-    sr, cr = math.sin(roll), math.cos(roll)
-    sy, cy = math.sin(yaw), math.cos(yaw)
-    cpi = 1.0 / cp
-    tp = sp * cpi
+    sr, cr, sp, cp, sy, cy, cpi, tp = trigonometry(state)
     velocity, acceleration = state[VX : VZ + 1], state[AX : AZ + 1]
     pitch_rate, yaw_rate = state[VPITCH], state[VYAW]
     half_dt2 = 0.5 * delta * delta
@@ -151,12 +176,9 @@ class Ekf:
         self.covariance = j @ self.covariance @ j.T + delta * noise
 
     def correct(self, measurement: Measurement) -> bool:
-        """Ekf::correct: Kalman update of the measured, finite entries; False if the Mahalanobis gate refused it."""
-        indices = [
-            i
-            for i, used in enumerate(measurement.update_vector)
-            if used and math.isfinite(measurement.values[i])
-        ]
+        """Ekf::correct: Kalman update of the measured, finite entries; False if the Mahalanobis gate refused it
+        (or the innovation covariance cannot be inverted, where Eigen would fill the state with NaN)."""
+        indices = measured_indices(measurement)
         if not indices:
             return True
         h = np.zeros((len(indices), STATE_SIZE))
@@ -165,7 +187,10 @@ class Ekf:
         diagonal = np.abs(np.diag(r))  # a negative variance is taken as its absolute value
         np.fill_diagonal(r, np.maximum(diagonal, MIN_MEASUREMENT_VARIANCE))
         pht = self.covariance @ h.T
-        hphr_inverse = np.linalg.inv(h @ pht + r)
+        try:
+            hphr_inverse = np.linalg.inv(h @ pht + r)
+        except np.linalg.LinAlgError:
+            return False
         gain = pht @ hphr_inverse
         innovation = measurement.values[indices] - self.state[indices]
         for row, index in enumerate(indices):
@@ -189,7 +214,8 @@ class Ekf:
                 self.predict(validate_delta(delta))
             self.correct(measurement)
         else:
-            used = np.array(measurement.update_vector, dtype=bool)
+            used = np.zeros(STATE_SIZE, dtype=bool)
+            used[measured_indices(measurement)] = True
             self.state[used] = measurement.values[used]
             both = np.outer(used, used)
             self.covariance[both] = measurement.covariance[both]
@@ -206,6 +232,12 @@ class Ekf:
     def wrap_state_angles(self) -> None:
         for index in ANGLES:
             self.state[index] = normalize_angle(self.state[index])
+
+
+def measured_indices(measurement: Measurement) -> List[int]:
+    """The entries a measurement updates: those in its update vector with a finite value (NaN and inf are left
+    out, as Ekf::correct does)."""
+    return [i for i, used in enumerate(measurement.update_vector) if used and math.isfinite(measurement.values[i])]
 
 
 def validate_delta(delta: float) -> float:
@@ -226,11 +258,3 @@ def passes_mahalanobis_gate(innovation: np.ndarray, inverse_covariance: np.ndarr
     if math.isinf(sigmas):
         return True
     return float(innovation @ inverse_covariance @ innovation) < sigmas * sigmas
-
-
-def covariance_is_valid(covariance: np.ndarray, tolerance: float = 1e-9) -> bool:
-    """Symmetric and positive definite (used by tests and by the node's NaN check)."""
-    if not np.all(np.isfinite(covariance)) or not np.allclose(covariance, covariance.T, atol=tolerance):
-        return False
-    return bool(np.all(np.linalg.eigvalsh(0.5 * (covariance + covariance.T)) > 0.0))
-

@@ -13,7 +13,7 @@ from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
-from robot_localization.ekf import STATE_SIZE, VROLL, Ekf, Measurement
+from robot_localization.ekf import STATE_SIZE, VROLL, Ekf, Measurement, measured_indices
 from robot_localization.params import Config, Sensor
 from robot_localization.prepare import (
     ImuData,
@@ -122,10 +122,15 @@ class Localizer:
                 if transform is not None:
                     gravity = self.config.gravitational_acceleration
                     prepared = prepare_acceleration(
-                        imu, sensor.acceleration_update, transform, self.filter.state, self.angular_acceleration,
-                        gravity if sensor.remove_gravitational_acceleration else None, sensor.relative,
+                        imu,
+                        sensor.acceleration_update,
+                        transform,
+                        self.filter.state,
+                        self.angular_acceleration,
+                        gravity if sensor.remove_gravitational_acceleration else None,
+                        sensor.relative,
                         self.config.two_d_mode,
-                    )  # fmt: skip
+                    )
                     self._enqueue(topic, prepared, sensor.thresholds[2], imu.stamp)
                 self.last_message_times[topic] = imu.stamp
 
@@ -135,8 +140,16 @@ class Localizer:
         self.previous.clear()
         self.queue.clear()
         self.last_set_pose_time = pose.stamp
-        prepared = self._prepare_pose(pose, "set_pose", [True] * STATE_SIZE, self.config.world_frame,
-                                      self.config.base_link_frame, False, False, False)  # fmt: skip
+        prepared = self._prepare_pose(
+            pose,
+            "set_pose",
+            [True] * STATE_SIZE,
+            self.config.world_frame,
+            self.config.base_link_frame,
+            False,
+            False,
+            False,
+        )
         values = np.zeros(STATE_SIZE)
         covariance = np.eye(STATE_SIZE) * SET_POSE_VARIANCE
         if prepared is not None:
@@ -172,9 +185,14 @@ class Localizer:
         stamp = self.filter.last_measurement_time
         corrected = not self.config.permit_corrected_publication and self.last_published_stamp >= stamp
         self.last_published_stamp = stamp
-        return Estimate(stamp, self.filter.state.copy(), self.filter.covariance.copy(),
-                        self.angular_acceleration.copy(), self.angular_acceleration_covariance.copy(),
-                        not corrected)  # fmt: skip
+        return Estimate(
+            stamp,
+            self.filter.state.copy(),
+            self.filter.covariance.copy(),
+            self.angular_acceleration.copy(),
+            self.angular_acceleration_covariance.copy(),
+            not corrected,
+        )
 
     def integrate(self, now: float) -> None:
         """Fuse the queued measurements stamped up to now, oldest first; without any, predict up to now once the
@@ -202,9 +220,11 @@ class Localizer:
     # ---- preparation ----
     def _before_set_pose(self, name: str, stamp: float) -> bool:
         if stamp <= self.last_set_pose_time:
-            self.warn("The %s message has a timestamp equal to or before the last filter reset, this message will be "
-                      "ignored. This may indicate an empty or bad timestamp. (message time: %.9f)" % (name, stamp))
-            return True  # fmt: skip
+            self.warn(
+                "The %s message has a timestamp equal to or before the last filter reset, this message will be "
+                "ignored. This may indicate an empty or bad timestamp. (message time: %.9f)" % (name, stamp)
+            )
+            return True
         return False
 
     def _accept(self, topic: str, stamp: float) -> bool:
@@ -216,15 +236,18 @@ class Localizer:
         if self.config.reset_on_time_jump and self.use_sim_time:
             self.reset()
         else:
-            self.warn("The %s message has a timestamp before that of the previous message received, this message "
-                      "will be ignored. This may indicate a bad timestamp. (message time: %.9f)" % (topic, stamp))
-        return False  # fmt: skip
+            self.warn(
+                "The %s message has a timestamp before that of the previous message received, this message "
+                "will be ignored. This may indicate a bad timestamp. (message time: %.9f)" % (topic, stamp)
+            )
+        return False
 
     def _pose_input(self, sensor: Sensor, pose: PoseData, topic: str, target: str, source: str, imu: bool) -> None:
         if not self._accept(topic, pose.stamp):
             return
-        prepared = self._prepare_pose(pose, topic, sensor.pose_update, target, source, sensor.differential,
-                                      sensor.relative, imu)  # fmt: skip
+        prepared = self._prepare_pose(
+            pose, topic, sensor.pose_update, target, source, sensor.differential, sensor.relative, imu
+        )
         # a differential pose becomes a twist: upstream gates it with the pose threshold all the same
         self._enqueue(topic, prepared, sensor.thresholds[0], pose.stamp)
         self.last_message_times[topic] = pose.stamp
@@ -236,9 +259,16 @@ class Localizer:
         self.last_message_times[topic] = twist.stamp
 
     def _enqueue(self, topic: str, prepared: Optional[Prepared], threshold: float, stamp: float) -> None:
-        if prepared is not None:
-            measurement = Measurement(stamp, prepared[0], prepared[1], prepared[2], threshold, topic)
-            heapq.heappush(self.queue, (stamp, next(self._order), measurement))
+        """Queue a prepared measurement; one whose covariance is not finite would make the whole state NaN (as
+        upstream's does): it is dropped with a warning."""
+        if prepared is None:
+            return
+        measurement = Measurement(stamp, prepared[0], prepared[1], prepared[2], threshold, topic)
+        indices = measured_indices(measurement)
+        if not np.all(np.isfinite(measurement.covariance[np.ix_(indices, indices)])):
+            self.warn("The %s message has a covariance that is not finite: ignored" % topic)
+            return
+        heapq.heappush(self.queue, (stamp, next(self._order), measurement))
 
     def _lookup(self, target: str, source: str, stamp: float) -> Optional[Transform]:
         """lookupTransformSafe: a frame to itself is the identity even without tf."""
@@ -253,9 +283,16 @@ class Localizer:
         return prepare_twist(twist, update, transform, self.filter.state, self.config.two_d_mode)
 
     def _prepare_pose(
-        self, pose: PoseData, topic: str, update: Sequence[bool], target: str, source: str, differential: bool,
-        relative: bool, imu: bool,
-    ) -> Optional[Prepared]:  # fmt: skip
+        self,
+        pose: PoseData,
+        topic: str,
+        update: Sequence[bool],
+        target: str,
+        source: str,
+        differential: bool,
+        relative: bool,
+        imu: bool,
+    ) -> Optional[Prepared]:
         """preparePose: into the target frame (an IMU's orientation: its mounting offsets removed, roll and pitch
         turned by its mounting yaw); in differential mode, the change since the last pose as a twist."""
         base_link = self.config.base_link_frame
@@ -283,8 +320,9 @@ class Localizer:
             measured = (rpy_to_matrix(*angles), measured[1])
             target_transform = identity()
         if differential:
-            return self._pose_change(pose, topic, update, measured, covariance, covariance_rotated,
-                                     target_transform[0], source)  # fmt: skip
+            return self._pose_change(
+                pose, topic, update, measured, covariance, covariance_rotated, target_transform[0], source
+            )
         if source_transform is not None:
             measured = compose(measured, source_transform)
         if relative:
@@ -300,9 +338,16 @@ class Localizer:
         return values, full_covariance, update
 
     def _pose_change(
-        self, pose: PoseData, topic: str, update: List[bool], measured: Transform, covariance: np.ndarray,
-        covariance_rotated: np.ndarray, target_rotation: np.ndarray, source: str,
-    ) -> Optional[Prepared]:  # fmt: skip
+        self,
+        pose: PoseData,
+        topic: str,
+        update: List[bool],
+        measured: Transform,
+        covariance: np.ndarray,
+        covariance_rotated: np.ndarray,
+        target_rotation: np.ndarray,
+        source: str,
+    ) -> Optional[Prepared]:
         """preparePose's differential branch: (previous^-1 current) / dt as a twist in `source`, its covariance
         (current + previous) dt; the first pose only starts the chain."""
         previous = self.previous.get(topic)

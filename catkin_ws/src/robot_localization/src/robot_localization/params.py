@@ -35,9 +35,7 @@ class Sensor:
         self.pose_use_child_frame = read_bool(params, name + "_pose_use_child_frame", False)
         self.queue_size = read_int(params, name + "_queue_size", 1, minimum=1)
         self.nodelay = read_bool(params, name + "_nodelay", False)
-        self.remove_gravitational_acceleration = read_bool(
-            params, name + "_remove_gravitational_acceleration", False
-        )
+        self.remove_gravitational_acceleration = read_bool(params, name + "_remove_gravitational_acceleration", False)
         update = read_update_vector(params, name + "_config")
         threshold = {
             "odom": (name + "_pose_rejection_threshold", name + "_twist_rejection_threshold", None),
@@ -130,8 +128,10 @@ class Config:
                     "position or linear velocity" % sensor.name
                 )
             if not sensor.used:
-                found.append("%s [%s] is listed as an input topic, but all its update variables are false"
-                             % (sensor.name, sensor.topic))  # fmt: skip
+                found.append(
+                    "%s [%s] is listed as an input topic, but all its update variables are false"
+                    % (sensor.name, sensor.topic)
+                )
         return found
 
 
@@ -215,4 +215,3 @@ def defaults() -> Dict[str, Any]:
         for key in vars(config)
         if isinstance(getattr(config, key), (bool, float, str)) and key != "unsupported"
     }
-

@@ -5,6 +5,7 @@ Messages arrive as the plain tuples below; a transform is (R, t) with p_target =
 """
 from __future__ import annotations
 
+import math
 from typing import List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
@@ -128,12 +129,16 @@ def prepare_acceleration(
 
 def normalized(quaternion: Sequence[float]) -> np.ndarray:
     """A quaternion of length 1; upstream normalizes one that is off by more than 0.01 (with a warning) and
-    treats all zeros as the identity."""
+    treats all zeros as the identity. One with a component that is not finite stays NaN (left out later)."""
     q = np.array(quaternion, dtype=float)
-    length = float(np.linalg.norm(q))
-    if length == 0.0:
+    if not np.all(np.isfinite(q)):
+        return np.full(4, math.nan)
+    largest = float(np.max(np.abs(q)))
+    if largest == 0.0:
         return np.array([0.0, 0.0, 0.0, 1.0])
-    return q / length if abs(length - 1.0) > 0.01 else q
+    scaled = q / largest  # its length cannot overflow
+    length = largest * float(np.linalg.norm(scaled))
+    return scaled / np.linalg.norm(scaled) if abs(length - 1.0) > 0.01 else q
 
 
 def pose_covariance(pose: PoseData) -> np.ndarray:

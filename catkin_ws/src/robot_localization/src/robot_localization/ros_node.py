@@ -35,21 +35,30 @@ NUMBERS = re.compile(r"[-+]?\d[\d.e+-]*")
 
 def pose_data(header, pose_with_covariance) -> PoseData:
     p, q = pose_with_covariance.pose.position, pose_with_covariance.pose.orientation
-    return PoseData(header.stamp.to_sec(), header.frame_id, (p.x, p.y, p.z), (q.x, q.y, q.z, q.w),
-                    pose_with_covariance.covariance)  # fmt: skip
+    return PoseData(
+        header.stamp.to_sec(), header.frame_id, (p.x, p.y, p.z), (q.x, q.y, q.z, q.w), pose_with_covariance.covariance
+    )
 
 
 def twist_data(header, frame_id: str, twist_with_covariance) -> TwistData:
     v, w = twist_with_covariance.twist.linear, twist_with_covariance.twist.angular
-    return TwistData(header.stamp.to_sec(), frame_id, (v.x, v.y, v.z), (w.x, w.y, w.z),
-                     twist_with_covariance.covariance)  # fmt: skip
+    return TwistData(
+        header.stamp.to_sec(), frame_id, (v.x, v.y, v.z), (w.x, w.y, w.z), twist_with_covariance.covariance
+    )
 
 
 def imu_data(msg: Imu) -> ImuData:
     q, w, a = msg.orientation, msg.angular_velocity, msg.linear_acceleration
-    return ImuData(msg.header.stamp.to_sec(), msg.header.frame_id, (q.x, q.y, q.z, q.w), msg.orientation_covariance,
-                   (w.x, w.y, w.z), msg.angular_velocity_covariance, (a.x, a.y, a.z),
-                   msg.linear_acceleration_covariance)  # fmt: skip
+    return ImuData(
+        msg.header.stamp.to_sec(),
+        msg.header.frame_id,
+        (q.x, q.y, q.z, q.w),
+        msg.orientation_covariance,
+        (w.x, w.y, w.z),
+        msg.angular_velocity_covariance,
+        (a.x, a.y, a.z),
+        msg.linear_acceleration_covariance,
+    )
 
 
 def transform_message(transform: Transform, stamp: rospy.Time, parent: str, child: str) -> TransformStamped:
@@ -103,8 +112,13 @@ class EkfNode:
             "imu": (Imu, self.on_imu),
         }[sensor.kind]
         rospy.loginfo("%s: subscribed to %s", sensor.name, rospy.resolve_name(sensor.topic))
-        return rospy.Subscriber(sensor.topic, message_type, functools.partial(callback, sensor),
-                                queue_size=sensor.queue_size, tcp_nodelay=sensor.nodelay)  # fmt: skip
+        return rospy.Subscriber(
+            sensor.topic,
+            message_type,
+            functools.partial(callback, sensor),
+            queue_size=sensor.queue_size,
+            tcp_nodelay=sensor.nodelay,
+        )
 
     # ---- inputs ----
     def on_odometry(self, sensor: Sensor, msg: Odometry) -> None:
@@ -137,8 +151,10 @@ class EkfNode:
     def on_enable(self, _request) -> EmptyResponse:
         with self.lock:
             if self.localizer.enabled:
-                rospy.logwarn("Asking for enabling filter service, but the filter was already enabled! Use param "
-                              "disabled_at_startup.")  # fmt: skip
+                rospy.logwarn(
+                    "Asking for enabling filter service, but the filter was already enabled! Use param "
+                    "disabled_at_startup."
+                )
             else:
                 rospy.loginfo("Enabling filter...")
                 self.localizer.enabled = True
@@ -162,8 +178,10 @@ class EkfNode:
         except tf2_ros.TransformException:
             try:
                 message = self.tf_buffer.lookup_transform(target, source, rospy.Time(0))
-                self.warn("Transform from %s to %s was unavailable for the time requested. Using latest instead."
-                          % (source, target))  # fmt: skip
+                self.warn(
+                    "Transform from %s to %s was unavailable for the time requested. Using latest instead."
+                    % (source, target)
+                )
             except tf2_ros.TransformException as error:
                 if target != source:
                     self.warn("Could not obtain transform from %s to %s. Error was %s" % (source, target, error))
@@ -188,9 +206,12 @@ class EkfNode:
                 return
             odometry = self.odometry_message(estimate)
             if not np.all(np.isfinite(estimate.state)):
-                rospy.logerr_throttle(WARNING_PERIOD, "Critical Error, NaNs were detected in the output state of "
-                                      "the filter. This was likely due to poorly conditioned process, noise, or "
-                                      "sensor covariances.")  # fmt: skip
+                rospy.logerr_throttle(
+                    WARNING_PERIOD,
+                    "Critical Error, NaNs were detected in the output state of "
+                    "the filter. This was likely due to poorly conditioned process, noise, or "
+                    "sensor covariances.",
+                )
             if self.config.publish_tf:
                 self.publish_transform(odometry)
             self.odometry_publisher.publish(odometry)
@@ -243,8 +264,9 @@ class EkfNode:
                 self.warn("Could not obtain transform from %s->%s" % (config.odom_frame, config.base_link_frame))
                 return
             map_to_odom = compose(world_to_base, base_to_odom)
-            self.tf_broadcaster.sendTransform(transform_message(map_to_odom, stamp, config.map_frame,
-                                                                config.odom_frame))  # fmt: skip
+            self.tf_broadcaster.sendTransform(
+                transform_message(map_to_odom, stamp, config.map_frame, config.odom_frame)
+            )
 
 
 def main() -> None:

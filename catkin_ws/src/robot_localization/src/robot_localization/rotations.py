@@ -14,7 +14,9 @@ TAU = 2.0 * math.pi
 
 
 def normalize_angle(angle: float) -> float:
-    """angles::normalize_angle (FilterUtilities::clampRotation): the angle in [-pi, pi)."""
+    """angles::normalize_angle (FilterUtilities::clampRotation): the angle in [-pi, pi); NaN for no number."""
+    if not math.isfinite(angle):
+        return math.nan
     wrapped = math.fmod(angle + math.pi, TAU)
     if wrapped < 0.0:
         wrapped += TAU

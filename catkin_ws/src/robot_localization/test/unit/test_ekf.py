@@ -50,8 +50,22 @@ def test_reset_values_of_filter_base():
     np.testing.assert_array_equal(ekf.state, np.zeros(STATE_SIZE))
     np.testing.assert_array_equal(ekf.covariance, np.eye(STATE_SIZE) * 1e-9)
     assert np.diag(DEFAULT_PROCESS_NOISE).tolist() == [
-        0.05, 0.05, 0.06, 0.03, 0.03, 0.06, 0.025, 0.025, 0.04, 0.01, 0.01, 0.02, 0.01, 0.01, 0.015
-    ]  # fmt: skip
+        0.05,
+        0.05,
+        0.06,
+        0.03,
+        0.03,
+        0.06,
+        0.025,
+        0.025,
+        0.04,
+        0.01,
+        0.01,
+        0.02,
+        0.01,
+        0.01,
+        0.015,
+    ]
 
 
 def test_predict_one_step_by_hand():

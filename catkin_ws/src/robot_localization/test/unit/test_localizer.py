@@ -84,8 +84,10 @@ def test_twist_of_a_sensor_off_the_origin():
 def test_differential_orientation_becomes_a_rate():
     """preparePose differential: (previous^-1 current) / dt; yaw 0.3 then 0.4 after 0.1 s: vyaw 1.0, the twist
     covariance (R + R_previous) dt = 2e-4 * 0.1; the first message only starts the chain."""
-    loc = localizer({"imu0": "imu", "imu0_config": flags(YAW), "imu0_differential": True},
-                    Tf({("base_link", "imu_link"): (np.eye(3), np.zeros(3))}))  # fmt: skip
+    loc = localizer(
+        {"imu0": "imu", "imu0_config": flags(YAW), "imu0_differential": True},
+        Tf({("base_link", "imu_link"): (np.eye(3), np.zeros(3))}),
+    )
     sensor = loc.config.sensors[0]
     loc.imu(sensor, imu(1.0, rpy_to_quaternion(0, 0, 0.3)))
     assert loc.queue == []
@@ -110,8 +112,9 @@ def test_relative_pose_starts_at_zero():
 def test_gravity_is_removed_along_the_imu_orientation():
     """prepareAcceleration: a ~ a - R' (0, 0, g); tilted 0.1 rad in pitch at rest, only gravity: nothing left."""
     g = 9.80665
-    loc = localizer({"imu0": "imu", "imu0_config": flags(AX, AX + 1, AZ),
-                     "imu0_remove_gravitational_acceleration": True}, Tf({}))  # fmt: skip
+    loc = localizer(
+        {"imu0": "imu", "imu0_config": flags(AX, AX + 1, AZ), "imu0_remove_gravitational_acceleration": True}, Tf({})
+    )
     reading = rpy_to_matrix(0, 0.1, 0).T @ np.array([0.0, 0.0, g])
     loc.imu(loc.config.sensors[0], imu(1.0, rpy_to_quaternion(0, 0.1, 0), acceleration=reading, frame="base_link"))
     (measurement,) = queued(loc)

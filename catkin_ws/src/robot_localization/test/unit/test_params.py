@@ -35,8 +35,11 @@ def test_smb_course_config():
     assert (odom.name, odom.topic, odom.queue_size) == ("odom0", "smb_velocity_controller/odom", 10)
     assert not any(odom.pose_update) and odom.twist_update == flags(6, 7, 8, 11)
     assert (imu.name, imu.topic, imu.differential, imu.remove_gravitational_acceleration) == (
-        "imu0", "imu/data", True, True
-    )  # fmt: skip
+        "imu0",
+        "imu/data",
+        True,
+        True,
+    )
     assert imu.pose_update == flags(3, 4, 5) and imu.twist_update == flags(9, 10, 11)
     assert not any(imu.acceleration_update)
     np.testing.assert_array_equal(config.process_noise_covariance, DEFAULT_PROCESS_NOISE)
@@ -99,7 +102,13 @@ def test_bad_values_are_refused_with_the_parameter_named(params, named):
 
 def test_short_update_vector_is_padded_and_matrices_are_read_row_by_row():
     matrix = np.arange(225.0).reshape(15, 15)
-    config = Config({"twist0": "t", "twist0_config": [False] * 6 + [True], "initial_estimate_covariance":
-                     matrix.flatten().tolist(), "unused_param": 1})  # fmt: skip
+    config = Config(
+        {
+            "twist0": "t",
+            "twist0_config": [False] * 6 + [True],
+            "initial_estimate_covariance": matrix.flatten().tolist(),
+            "unused_param": 1,
+        }
+    )
     assert config.sensors[0].twist_update == flags(6)
     np.testing.assert_array_equal(config.initial_estimate_covariance, matrix)
