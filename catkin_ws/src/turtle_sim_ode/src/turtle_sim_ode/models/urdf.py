@@ -105,7 +105,8 @@ Geometry = Union[Box, Cylinder, Sphere, Mesh]
 VISUAL_SHAPES = ("box", "cylinder", "sphere", "mesh")
 
 
-# The parent link name of a joint that holds a model's root link to the world (SDF's <parent>world</parent>).
+# The parent link name of a joint that holds a model's root link to the world (SDF's <parent>world</parent>), and
+# a URDF root link of that name: the world frame (a fixed joint from it welds the robot where it was placed).
 WORLD_LINK = "world"
 
 
