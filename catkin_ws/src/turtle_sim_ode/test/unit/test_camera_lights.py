@@ -63,7 +63,7 @@ def shot(down, lights):
     frame = camera.render(sim.scene)
     origin, rotation = frame.pose
     points, _ = lighting.surface(frame.depth.astype(float), (camera._u, camera._v))
-    return frame.rgb[:, :, 0].astype(float), points @ rotation.T + origin
+    return frame.rgb[:, :, 0].astype(float), np.stack(points, axis=-1).astype(float) @ rotation.T + origin
 
 
 def term(red: np.ndarray) -> np.ndarray:
@@ -167,8 +167,7 @@ def test_a_lights_term_on_the_ground_never_grows_with_distance_nor_goes_negative
         pose=((0.0, 0.0, height), (0.0, 0.0, 0.0, 1.0)),
     )
     points = ground_points()
-    normals = np.tile((0.0, 0.0, 1.0), (len(points), 1))
-    terms = lighting.light_terms(points, normals, [lighting.PixelLight.of(light)])
+    terms = np.stack(lighting.light_terms(points.T, (0.0, 0.0, 1.0), [lighting.PixelLight.of(light)]), axis=1)
     assert np.isfinite(terms).all() and (terms >= 0.0).all()
     # farther along the ground, farther from the light and more off the spot's axis: never brighter
     assert (np.diff(terms, axis=0) <= 1e-9 * (1.0 + terms[:-1])).all()

@@ -16,7 +16,7 @@ shade_all / shade_sun, shade_all = AMBIENT + (1 - AMBIENT) min(1, sun term + the
 (Ogre clamps the lights' sum to 1). No shadows: a light reaches every surface facing it within its range."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import List, Sequence, Tuple
 
 import numpy as np
@@ -66,8 +66,12 @@ class PixelLight:
 
 def attenuation(distance: np.ndarray, range_: float, constant: float, linear: float, quadratic: float) -> np.ndarray:
     """Ogre's 1 / (constant + linear d + quadratic d^2) within ``range_``, 0 beyond."""
-    denominator = np.maximum(constant + linear * distance + quadratic * distance * distance, SMALLEST_DENOMINATOR)
-    return np.where(distance <= range_, 1.0 / denominator, 0.0)
+    denominator = quadratic * distance
+    denominator += linear
+    denominator *= distance
+    denominator += constant
+    np.maximum(denominator, SMALLEST_DENOMINATOR, out=denominator)
+    return np.where(distance <= range_, np.reciprocal(denominator, out=denominator), 0.0).astype(distance.dtype)
 
 
 def spot_factor(rho: np.ndarray, cos_inner: float, cos_outer: float, falloff: float) -> np.ndarray:
@@ -75,60 +79,89 @@ def spot_factor(rho: np.ndarray, cos_inner: float, cos_outer: float, falloff: fl
     ((rho - cos_outer) / (cos_inner - cos_outer)) ^ falloff between (a cone without a rim where inner >= outer)."""
     width = cos_inner - cos_outer
     if width <= 0.0:
-        return (rho > cos_outer).astype(float)
+        return (rho > cos_outer).astype(rho.dtype)
     edge = np.clip((rho - cos_outer) / width, 0.0, 1.0)
-    return np.where(edge > 0.0, edge ** max(falloff, 0.0), 0.0)
+    return np.where(edge > 0.0, edge ** max(falloff, 0.0), 0.0).astype(rho.dtype)
 
 
-def light_terms(points: np.ndarray, normals: np.ndarray, lights: Sequence[PixelLight]) -> np.ndarray:
-    """The lights' summed diffuse terms (N, 3) at ``points`` (N, 3) of unit ``normals`` (zero: unlit), unclamped."""
-    total = np.zeros(points.shape[:-1] + (3,))
-    for light in lights:
-        if light.kind == "directional":
-            factor = np.maximum(normals @ -light.toward, 0.0)
-        else:
-            to_light = light.position - points
-            distance = np.sqrt(np.einsum("...i,...i->...", to_light, to_light))
-            unit = to_light / np.maximum(distance, 1e-12)[..., None]
-            factor = np.maximum(np.einsum("...i,...i->...", normals, unit), 0.0) * attenuation(
-                distance, *light.attenuation
-            )
-            if light.kind == "spot":
-                factor = factor * spot_factor(-(unit @ light.toward), *light.spot)
-        total += factor[..., None] * light.diffuse
+Components = Tuple[np.ndarray, np.ndarray, np.ndarray]  # x, y, z arrays of one shape (or broadcasting to it)
+
+
+def _dot(a: Components, b: Components) -> np.ndarray:
+    total = a[0] * b[0]
+    total += a[1] * b[1]
+    total += a[2] * b[2]
     return total
 
 
-def _tangent(points: np.ndarray, depth: np.ndarray, axis: int) -> np.ndarray:
-    """Along ``axis`` of the image, each pixel's step to the neighbour nearer in depth (NaN where neither is)."""
-    step = np.diff(points, axis=axis)
-    jump = np.abs(np.diff(depth, axis=axis))
-    jump[~np.isfinite(jump)] = np.inf
-    pad = [(0, 0)] * depth.ndim
-    after, before = list(pad), list(pad)
-    after[axis], before[axis] = (0, 1), (1, 0)
-    forward = np.pad(step, after + [(0, 0)], constant_values=np.nan)
-    backward = np.pad(step, before + [(0, 0)], constant_values=np.nan)
-    use_forward = np.pad(jump, after, constant_values=np.inf) <= np.pad(jump, before, constant_values=np.inf)
-    return np.where(use_forward[..., None], forward, backward)
+def light_terms(points: Components, normals: Components, lights: Sequence[PixelLight]) -> Components:
+    """The lights' summed diffuse terms (red, green, blue arrays; unclamped) at ``points`` of unit ``normals``
+    (zero: unlit), all in the lights' frame. Per light a few passes over scalar arrays (float32 where given)."""
+    shape = np.broadcast(points[0], normals[0]).shape
+    kind = np.result_type(points[0], normals[0])
+    channels = [np.zeros(shape, dtype=kind) for _ in range(3)]
+    for light in lights:
+        if light.kind == "directional":
+            factor = np.broadcast_to(_dot(normals, tuple(-light.toward.astype(kind))), shape)
+        else:
+            to_light = tuple(kind.type(p) - q for p, q in zip(light.position, points))
+            distance = np.sqrt(_dot(to_light, to_light))
+            inverse = np.reciprocal(np.maximum(distance, 1e-9))
+            factor = _dot(normals, to_light)
+            factor *= inverse
+            factor *= attenuation(distance, *light.attenuation)
+            if light.kind == "spot":
+                rho = _dot(to_light, tuple(-light.toward.astype(kind)))
+                rho *= inverse
+                factor *= spot_factor(rho, *light.spot)
+        factor = np.maximum(factor, 0.0)
+        for channel, weight in zip(channels, light.diffuse):
+            if weight > 0.0:
+                channel += factor * kind.type(weight)
+    return channels[0], channels[1], channels[2]
 
 
-def surface(depth: np.ndarray, lens: Tuple[np.ndarray, np.ndarray]) -> Tuple[np.ndarray, np.ndarray]:
-    """Points (H, W, 3) and unit normals facing the camera (zero where unknown), optical frame, of the surfaces
-    the depth image (optical z; inf or NaN: nothing) shows; ``lens``: x / z of each column, y / z of each row."""
+def _slope(w: np.ndarray, axis: int) -> np.ndarray:
+    """Along ``axis`` of the image, each pixel's step in ``w`` to the neighbour whose step is smaller (the same
+    surface, at a depth edge)."""
+    step = np.diff(w, axis=axis)
+    first, last = [slice(None)] * 2, [slice(None)] * 2
+    first[axis], last[axis] = slice(1, None), slice(None, -1)
+    forward, backward = step[tuple(first)], step[tuple(last)]
+    slope = np.empty_like(w)
+    inner, head, tail = [slice(None)] * 2, [slice(None)] * 2, [slice(None)] * 2
+    inner[axis], head[axis], tail[axis] = slice(1, -1), slice(0, 1), slice(-1, None)
+    slope[tuple(inner)] = np.where(np.abs(forward) <= np.abs(backward), forward, backward)
+    slope[tuple(head)] = step[tuple(head)]
+    slope[tuple(tail)] = step[tuple(tail)]
+    return slope
+
+
+def surface(depth: np.ndarray, lens: Tuple[np.ndarray, np.ndarray]) -> Tuple[Components, Components]:
+    """Points and unit normals facing the camera (zero where nothing is hit), optical frame, float32 (H, W) arrays
+    each, of the surfaces the depth image (optical z; inf or NaN: nothing) shows; ``lens``: x / z of each column, y / z
+    of each row (evenly spaced, 1 / focal length apart). On a plane n . p = c the inverse depth w = 1 / z is
+    (n . (u, v, 1)) / c, linear in u and v: its slopes and value give n / c = (w_u, w_v, w - u w_u - v w_v)."""
     columns, rows = lens
-    depth = np.where(np.isfinite(depth), depth, np.nan)
-    points = np.empty(depth.shape + (3,))
-    points[:, :, 0] = columns[None, :] * depth
-    points[:, :, 1] = rows[:, None] * depth
-    points[:, :, 2] = depth
-    with np.errstate(invalid="ignore"):
-        normals = np.cross(_tangent(points, depth, 1), _tangent(points, depth, 0))
-        length = np.sqrt(np.einsum("...i,...i->...", normals, normals))
-        facing = np.where(np.einsum("...i,...i->...", normals, points) > 0.0, -1.0, 1.0)
-        normals *= (facing / length)[..., None]
-    normals[~np.isfinite(normals).all(axis=-1)] = 0.0
-    return points, normals
+    u = columns.astype(np.float32)[None, :]
+    v = rows.astype(np.float32)[:, None]
+    z = depth.astype(np.float32)
+    z[~np.isfinite(z)] = 0.0  # nothing hit: no point, no normal
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w = np.reciprocal(z)
+        w[z == 0.0] = 0.0
+        focal = np.float32(1.0 / (columns[1] - columns[0])) if len(columns) > 1 else np.float32(1.0)
+        w_u = _slope(w, 1) * focal if w.shape[1] > 1 else np.zeros_like(w)
+        w_v = _slope(w, 0) * focal if w.shape[0] > 1 else np.zeros_like(w)
+        w_1 = w - u * w_u
+        w_1 -= v * w_v
+        # (w_u, w_v, w_1) . p = w z = 1 for p = z (u, v, 1): the normal facing the camera is its opposite
+        length = _dot((w_u, w_v, w_1), (w_u, w_v, w_1))
+        length[w == 0.0] = np.inf
+        scale = np.sqrt(length, out=length)
+        np.reciprocal(scale, out=scale)
+        scale *= -1.0
+    return (u * z, v * z, z), (w_u * scale, w_v * scale, w_1 * scale)
 
 
 def relight(
@@ -141,15 +174,22 @@ def relight(
     lights: List[PixelLight],
 ) -> np.ndarray:
     """``rgb`` (H, W, 3) uint8 as the ray casters shaded it (``ambient`` share, unit ``sun`` toward the light or
-    zeros) with ``lights`` added; ``pose``: the optical frame's origin and rotation (world from optical)."""
+    zeros) with ``lights`` added; ``pose``: the optical frame's origin and rotation (world from optical). The work
+    is done in the optical frame (the lights moved into it)."""
     if not lights:
         return rgb
     origin, rotation = pose
+    local = [
+        replace(light, position=(light.position - origin) @ rotation, toward=light.toward @ rotation)
+        for light in lights
+    ]
     points, normals = surface(depth, lens)
-    world_points = points @ rotation.T + origin
-    world_normals = normals @ rotation.T
-    sun_term = np.clip(world_normals @ sun, 0.0, 1.0)
-    others = light_terms(np.nan_to_num(world_points), world_normals, lights)
-    shade_all = ambient + (1.0 - ambient) * np.minimum(sun_term[..., None] + others, 1.0)
-    scale = shade_all / (ambient + (1.0 - ambient) * sun_term)[..., None]
-    return np.minimum(np.floor(rgb * scale + 0.5), 255.0).astype(np.uint8)
+    sun_term = np.clip(_dot(normals, tuple((np.asarray(sun, dtype=float) @ rotation).astype(np.float32))), 0.0, 1.0)
+    lit = np.float32(1.0 - ambient)
+    shade = np.stack([np.minimum(sun_term + term, 1.0) for term in light_terms(points, normals, local)], axis=-1)
+    shade *= lit
+    shade += np.float32(ambient)
+    shade /= (np.float32(ambient) + lit * sun_term)[..., None]  # the ray caster's shade, in rgb already
+    shade *= rgb
+    shade += np.float32(0.5)
+    return np.minimum(shade, 255.0, out=shade).astype(np.uint8)

@@ -81,7 +81,9 @@ def interfaces(context: ModelContext, config: CameraConfig) -> List[Periodic]:
                 sensor, sim.scene, context.namespace, lambda: sim.light_direction, rtf, lambda: sim.camera_lights
             )
         ]
-    return [CameraPublisher(sensor, sim.scene, context.namespace, lambda: sim.light_direction, lambda: sim.camera_lights)]
+    return [
+        CameraPublisher(sensor, sim.scene, context.namespace, lambda: sim.light_direction, lambda: sim.camera_lights)
+    ]
 
 
 def multicamera_interfaces(context: ModelContext, config: MultiCameraConfig) -> List[Periodic]:
