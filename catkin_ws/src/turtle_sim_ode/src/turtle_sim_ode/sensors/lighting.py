@@ -13,7 +13,8 @@ The ray casters shade each surface with ambient light and one directional light 
 pixel's surface point comes from the depth (origin + depth along the pixel's ray), its normal from the inverse
 depth's steps to its neighbours (on each image axis the smaller step, so a depth edge does not bend it; see
 ``surface``), and the pixel is scaled by shade_all / shade_sun, shade_all = AMBIENT + (1 - AMBIENT) min(1, sun term +
-the other lights' terms) per channel (Ogre clamps the lights' sum to 1). No shadows: a light reaches every surface facing it within its range."""
+the other lights' terms) per channel (Ogre clamps the lights' sum to 1). No shadows: a light reaches every surface
+facing it within its range."""
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
