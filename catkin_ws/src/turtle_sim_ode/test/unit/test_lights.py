@@ -111,6 +111,20 @@ def test_cameras_add_the_point_and_spot_lights_the_services_leave(monkeypatch) -
     assert centre_red(publisher) == pytest.approx(255 * 0.4, abs=1)
 
 
+def test_the_camera_plugins_publishers_take_the_worlds_other_lights(monkeypatch) -> None:
+    """ros.plugins.camera wires Simulation.camera_lights into the publishers it makes."""
+    from turtle_sim_ode.ros.plugins import model_interfaces
+    from turtle_sim_ode.ros.settings import SimulatorSettings
+
+    monkeypatch.setattr(rospy, "has_param", lambda key: False)
+    sim, _ = camera_in(monkeypatch, WORLD)
+    (publisher,) = model_interfaces("cam", sim, SimulatorSettings(), None, "r")
+    FakePublisher.made["r/cam/image_raw"].connections = 1
+    sim.delete_light("sun")
+    sim.set_light_properties("lamp", direction=(0, 0, -1), position=(0.5, 0, 0.55), quaternion=(0, 0, 0, 1), **KEEP)
+    assert centre_red(publisher) == 255  # the lamp 1 m ahead of the face, attenuation 1 / 1
+
+
 def test_set_light_properties_normalises_the_quaternion_and_refuses_bad_values(world) -> None:
     sim, _ = world
     sim.set_light_properties("lamp", direction=(0, 0, -1), position=(1, 2, 3), quaternion=(0, 0, 2, 2), **KEEP)
