@@ -119,7 +119,9 @@ def test_the_spot_element_is_read_and_the_light_points_along_its_pose() -> None:
     )
     light = parse_light(element)
     assert (light.spot_inner_angle, light.spot_outer_angle, light.spot_falloff) == (0.1, 0.5, 2.0)
-    # the direction is in the light's frame: pitched down by 90 degrees, -z becomes -x
+    # the direction is in the light's frame (rendering/Light.cc LoadFromMsg, UpdateFromMsg: SetPosition and
+    # SetRotation of the pose on the light's node, whose child the Ogre light's direction is): pitched by 90
+    # degrees, -z becomes -x
     assert lighting.PixelLight.of(light).toward == pytest.approx((-1, 0, 0), abs=1e-6)
 
 
