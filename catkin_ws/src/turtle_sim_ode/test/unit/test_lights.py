@@ -2,6 +2,8 @@
 setLightProperties, deleteLight) and the cameras shading with what the services leave: a camera publisher asks for
 the world's directional light before each frame. A face lit head-on reads its full colour, one lit at 60° from its
 normal 0.4 + 0.6 cos 60° of it, and with no sun left 0.4 (sensors.camera's ambient share)."""
+import math
+
 import pytest
 import rospy
 from test_camera import CAMERA_URDF, FACE_X, RED_BOX
@@ -23,15 +25,22 @@ KEEP = dict(cast_shadows=False, diffuse=(1, 1, 1, 1), specular=(0, 0, 0, 1), att
 
 @pytest.fixture
 def world(monkeypatch):
+    return camera_in(monkeypatch, WORLD)
+
+
+def camera_in(monkeypatch, text: str, other_lights: bool = False):
+    """The red box ahead of a camera in world ``text``, and a publisher of the camera (given the world's other lights
+    too where ``other_lights``, as the camera plugins' are)."""
     FakePublisher.made = {}
     monkeypatch.setattr(periodic, "PackedPublisher", FakePublisher)
     sim = Simulation()
-    sim.load_world(parse_sdf_world(WORLD))
+    sim.load_world(parse_sdf_world(text))
     urdf = CAMERA_URDF.format(kind="camera", plugin="libgazebo_ros_camera.so", fov=1.047, width=32, height=24, z=0.5)
     sim.spawn_urdf("cam", urdf, (0, 0, 0.05, 0, 0, 0))
     sim.spawn_sdf("red_box", RED_BOX, (FACE_X + 0.25, 0, 0.55, 0, 0, 0))
     camera = CameraSensor(sim.physics, sim.models["cam"], sim.plugins["cam"].cameras[0], sun_direction=(0, 0, -1))
-    publisher = camera_topics.CameraPublisher(camera, sim.scene, "r", lambda: sim.light_direction)
+    lights = (lambda: sim.camera_lights) if other_lights else None
+    publisher = camera_topics.CameraPublisher(camera, sim.scene, "r", lambda: sim.light_direction, lights)
     FakePublisher.made["r/cam/image_raw"].connections = 1
     return sim, publisher
 
@@ -78,7 +87,42 @@ def test_cameras_shade_with_the_lights_the_services_leave(world) -> None:
     assert centre_red(publisher) == pytest.approx(255 * (0.4 + 0.6 * 0.5), abs=1)
     sim.delete_light("sun")
     assert sim.light_direction == (0.0, 0.0, 0.0)
-    assert centre_red(publisher) == pytest.approx(255 * 0.4, abs=1)  # the lamp (a point light) does not shade
+    assert centre_red(publisher) == pytest.approx(255 * 0.4, abs=1)  # this publisher is given no other lights
+
+
+def test_cameras_add_the_point_and_spot_lights_the_services_leave(monkeypatch) -> None:
+    """Point and spot lights as sensors.lighting adds them (Ogre's per-pixel diffuse term, see
+    test_camera_lights.py); the face's centre is at (1.5, 0, 0.55), its normal -x."""
+    torch = '<light type="spot" name="torch"><pose>0.5 0 0.55 0 0 0</pose><direction>1 0 0</direction>'
+    torch += "<spot><inner_angle>0.5</inner_angle><outer_angle>1</outer_angle><falloff>1</falloff></spot></light>"
+    sim, publisher = camera_in(monkeypatch, WORLD.replace("</world>", torch + "</world>"), other_lights=True)
+    sim.delete_light("sun")
+    # torch: 1 m ahead of the face, shining at it (diffuse 1, attenuation 1 / (1 + 1 x 1)); lamp: 3 m up,
+    # diffuse 0.5, n . l = 1.5 / d, attenuation 1 / (1 + d)
+    d = math.hypot(1.5, 3 - 0.55)
+    lamp = 0.5 * (1.5 / d) / (1 + d)
+    assert centre_red(publisher) == pytest.approx(255 * (0.4 + 0.6 * (0.5 + lamp)), abs=1.5)
+    sim.set_light_properties("torch", direction=(0, 0, -1), position=(0.5, 0, 0.55), quaternion=(0, 0, 0, 1), **KEEP)
+    assert centre_red(publisher) == pytest.approx(255 * (0.4 + 0.6 * lamp), abs=1.5)  # turned away: the lamp alone
+    sim.set_light_properties("lamp", direction=(0, 0, -1), position=(0.5, 0, 0.55), quaternion=(0, 0, 0, 1), **KEEP)
+    assert centre_red(publisher) == 255  # the lamp 1 m ahead, attenuation 1 / 1
+    sim.delete_light("lamp")
+    sim.delete_light("torch")
+    assert centre_red(publisher) == pytest.approx(255 * 0.4, abs=1)
+
+
+def test_the_camera_plugins_publishers_take_the_worlds_other_lights(monkeypatch) -> None:
+    """ros.plugins.camera wires Simulation.camera_lights into the publishers it makes."""
+    from turtle_sim_ode.ros.plugins import model_interfaces
+    from turtle_sim_ode.ros.settings import SimulatorSettings
+
+    monkeypatch.setattr(rospy, "has_param", lambda key: False)
+    sim, _ = camera_in(monkeypatch, WORLD)
+    (publisher,) = model_interfaces("cam", sim, SimulatorSettings(), None, "r")
+    FakePublisher.made["r/cam/image_raw"].connections = 1
+    sim.delete_light("sun")
+    sim.set_light_properties("lamp", direction=(0, 0, -1), position=(0.5, 0, 0.55), quaternion=(0, 0, 0, 1), **KEEP)
+    assert centre_red(publisher) == 255  # the lamp 1 m ahead of the face, attenuation 1 / 1
 
 
 def test_set_light_properties_normalises_the_quaternion_and_refuses_bad_values(world) -> None:

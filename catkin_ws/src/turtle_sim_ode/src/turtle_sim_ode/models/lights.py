@@ -3,7 +3,7 @@ when Gazebo's model database is not there."""
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Optional, Tuple
+from typing import Iterable, Optional, Tuple
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.builder import quat_from_rpy
@@ -19,7 +19,9 @@ LIGHT_TYPES = ("point", "directional", "spot")
 class Light:
     """One light, with the fields of gazebo_msgs' light services. Defaults are SDF's (sdformat sdf/1.6/light.sdf):
     diffuse 1 1 1 1, specular .1 .1 .1 1, attenuation range 10, constant 1, linear 1, quadratic 0, direction
-    0 0 -1, no shadows. ``pose``: position and quaternion (x, y, z, w) in the world."""
+    0 0 -1, no shadows, spot inner and outer angle 0, falloff 0 (radians, full cone angles as Ogre's
+    setSpotlightRange takes them). ``pose``: position and quaternion (x, y, z, w) in the world; ``direction`` is in
+    the light's frame."""
 
     name: str
     type: str = "point"
@@ -31,6 +33,9 @@ class Light:
     attenuation_linear: float = 1.0
     attenuation_quadratic: float = 0.0
     direction: Vec3 = (0.0, 0.0, -1.0)
+    spot_inner_angle: float = 0.0
+    spot_outer_angle: float = 0.0
+    spot_falloff: float = 0.0
     pose: Tuple[Vec3, Tuple[float, float, float, float]] = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 
 
@@ -77,6 +82,9 @@ def parse_light(element: Element) -> Light:
     (constant,) = _numbers(element, "attenuation/constant", 1, (defaults.attenuation_constant,), what)
     (linear,) = _numbers(element, "attenuation/linear", 1, (defaults.attenuation_linear,), what)
     (quadratic,) = _numbers(element, "attenuation/quadratic", 1, (defaults.attenuation_quadratic,), what)
+    (inner,) = _numbers(element, "spot/inner_angle", 1, (defaults.spot_inner_angle,), what)
+    (outer,) = _numbers(element, "spot/outer_angle", 1, (defaults.spot_outer_angle,), what)
+    (falloff,) = _numbers(element, "spot/falloff", 1, (defaults.spot_falloff,), what)
     return replace(
         defaults,
         type=kind,
@@ -88,13 +96,22 @@ def parse_light(element: Element) -> Light:
         attenuation_linear=linear,
         attenuation_quadratic=quadratic,
         direction=_numbers(element, "direction", 3, defaults.direction, what),  # type: ignore[arg-type]
+        spot_inner_angle=inner,
+        spot_outer_angle=outer,
+        spot_falloff=falloff,
         pose=(pose.xyz, (qx, qy, qz, qw)),
     )
 
 
-def sun_direction(lights) -> Optional[Vec3]:  # type: ignore[no-untyped-def]
-    """The direction of the first directional light with one (what the cameras shade with), or None."""
+def first_sun(lights: Iterable[Light]) -> Optional[Light]:
+    """The first directional light with a direction (what the cameras' ray casters shade with), or None."""
     for light in lights:
         if light.type == "directional" and any(light.direction):
-            return light.direction
+            return light
     return None
+
+
+def sun_direction(lights: Iterable[Light]) -> Optional[Vec3]:
+    """The direction of first_sun, or None."""
+    sun = first_sun(lights)
+    return sun.direction if sun is not None else None

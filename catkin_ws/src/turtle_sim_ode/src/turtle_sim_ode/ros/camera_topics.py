@@ -6,12 +6,13 @@ from __future__ import annotations
 
 import struct
 from io import BytesIO
-from typing import Any, Callable, Dict, Optional, Tuple
+from typing import Any, Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 import rospy
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 
+from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.ros.periodic import Periodic, packed_publisher, topic_prefix
 from turtle_sim_ode.ros.wire import Packed, release
 from turtle_sim_ode.sensors.camera import CLOUD_POINT_STEP, CameraSensor, Frame
@@ -141,14 +142,17 @@ class CameraPublisher(Periodic):
         scene: Scene,
         namespace: str,
         sun: Optional[Callable[[], Optional[Tuple[float, float, float]]]] = None,
+        lights: Optional[Callable[[], Sequence[Light]]] = None,
     ) -> None:
         """``scene``: what the cameras see of the world's models (the simulation's); ``sun``: the direction of the
-        world's directional light now (see CameraSensor.light_from), asked before each frame."""
+        world's directional light now, ``lights`` its other lights now (see CameraSensor.light_from), asked before
+        each frame."""
         config = sensor.config
         super().__init__(1.0 / config.update_rate)
         self._sensor = sensor
         self._scene = scene
         self._sun = sun
+        self._lights = lights
         self._prefix = topic_prefix(namespace) + topic_prefix(config.camera_name)
         topic = self.topic
         messages = templates(sensor)
@@ -180,7 +184,7 @@ class CameraPublisher(Periodic):
         if not any(self._heard(c) for c in (self._image, self._depth, self._points)):
             return None
         if self._sun is not None:
-            self._sensor.light_from(self._sun())
+            self._sensor.light_from(self._sun(), self._lights() if self._lights is not None else ())
         frame: Frame = self._sensor.render(self._scene)
         self.rendered += 1
         for warning in self._scene.take_warnings():

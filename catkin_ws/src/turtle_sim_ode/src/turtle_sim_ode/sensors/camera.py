@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import random
 from dataclasses import dataclass
-from typing import List, Optional, Tuple
+from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from turtle_sim_ode.models.builder import BuiltModel, quat_matrix
+from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.models.materials import GAZEBO_MATERIALS, RGB
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
@@ -24,6 +25,7 @@ from turtle_sim_ode.sensors.ray_kernel import RayCaster, primitive_row
 from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
 from turtle_sim_ode.sensors.raycast import Primitive, hit_plane, hit_triangle, mesh_triangles
 from turtle_sim_ode.sensors.distortion import DistortionMap
+from turtle_sim_ode.sensors.lighting import PixelLight, relight
 from turtle_sim_ode.sensors.scene import Scene, TexturedRow
 from turtle_sim_ode.sensors.texturing import apply_textures
 
@@ -87,12 +89,13 @@ class CameraSensor(MountedSensor):
             self._optical_dirs = optical / norm[:, :, None]  # unit ray directions, optical frame
             self._depth_per_distance = 1.0 / norm  # optical z of a hit per metre along its ray
 
-    def light_from(self, sun_direction: Optional[Tuple[float, float, float]]) -> None:
+    def light_from(self, sun_direction: Optional[Tuple[float, float, float]], lights: Sequence[Light] = ()) -> None:
         """Shade with this directional light from now on: None is Gazebo's default sun, (0, 0, 0) no sun (ambient
-        light only)."""
+        light only); and add ``lights`` (point, spot, further directional ones) per pixel (sensors.lighting)."""
         light = -np.asarray(sun_direction if sun_direction is not None else SUN_DIRECTION, dtype=float)
         norm = np.linalg.norm(light)
         self._light = light / norm if norm > 0 else np.zeros(3)
+        self._lights = [PixelLight.of(other) for other in lights]
 
     @property
     def uses_ray_kernel(self) -> bool:
@@ -154,6 +157,7 @@ class CameraSensor(MountedSensor):
                 AMBIENT,
                 self._sky,
             )
+            rgb = relight(rgb, depth64, (self._u, self._v), (origin, rotation), self._light, AMBIENT, self._lights)
             return Frame(self._finish(rgb, depth64, textured, origin, rotation), depth, (origin, rotation))
         height, width = config.height, config.width
         dirs = self._optical_dirs @ rotation.T  # world directions (H, W, 3)
@@ -204,6 +208,7 @@ class CameraSensor(MountedSensor):
         shade[missed] = self._sky
         depth[missed] = np.nan
         rgb = (np.clip(shade, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+        rgb = relight(rgb, depth, (self._u, self._v), (origin, rotation), self._light, AMBIENT, self._lights)
         return Frame(self._finish(rgb, depth, textured, origin, rotation), depth.astype(np.float32), (origin, rotation))
 
     def _finish(

@@ -3,9 +3,9 @@ get_light_properties, set_light_properties and delete_light do (gazebo_ros_api_p
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Dict, Optional, Sequence
+from typing import Dict, List, Optional, Sequence
 
-from turtle_sim_ode.models.lights import Light, Vec3, sun_direction
+from turtle_sim_ode.models.lights import Light, Vec3, first_sun, sun_direction
 from turtle_sim_ode.models.urdf import MAX_LENGTH
 from turtle_sim_ode.world.values import WorldError, finite, orientation, vec3, vector
 
@@ -26,6 +26,13 @@ class LightControl:
         if direction is None and self.had_sun:
             return (0.0, 0.0, 0.0)
         return direction
+
+    @property
+    def camera_lights(self) -> List[Light]:
+        """The lights the cameras add per pixel (sensors.lighting): every one but the directional light they shade
+        with (light_direction's)."""
+        sun = first_sun(self.lights.values())
+        return [light for light in self.lights.values() if light is not sun]
 
     def _light(self, name: str) -> Light:
         light = self.lights.get(name)

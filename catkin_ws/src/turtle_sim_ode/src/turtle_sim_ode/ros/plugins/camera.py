@@ -6,11 +6,12 @@ from __future__ import annotations
 import threading
 import time
 from collections import deque
-from typing import Callable, Deque, List, Optional, Tuple
+from typing import Callable, Deque, List, Optional, Sequence, Tuple
 
 import rospy
 from std_msgs.msg import Empty
 
+from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.ros.camera_topics import CameraPublisher
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, subscriber
 from turtle_sim_ode.ros.wire import release
@@ -33,8 +34,9 @@ class TriggeredCameraPublisher(CameraPublisher):
         namespace: str,
         sun: Optional[Callable[[], Optional[Tuple[float, float, float]]]] = None,
         real_time_factor: Callable[[], float] = lambda: 1.0,
+        lights: Optional[Callable[[], Sequence[Light]]] = None,
     ) -> None:
-        super().__init__(sensor, scene, namespace, sun)
+        super().__init__(sensor, scene, namespace, sun, lights)
         self._period = 0.0  # looks for a trigger at every step; renders only when triggered
         self._real_time_factor = real_time_factor
         self._lock = threading.Lock()
@@ -74,8 +76,14 @@ def interfaces(context: ModelContext, config: CameraConfig) -> List[Periodic]:
     # the world's lights as the light services leave them, read at each frame
     if config.triggered:
         rtf = lambda: sim.real_time_factor  # noqa: E731
-        return [TriggeredCameraPublisher(sensor, sim.scene, context.namespace, lambda: sim.light_direction, rtf)]
-    return [CameraPublisher(sensor, sim.scene, context.namespace, lambda: sim.light_direction)]
+        return [
+            TriggeredCameraPublisher(
+                sensor, sim.scene, context.namespace, lambda: sim.light_direction, rtf, lambda: sim.camera_lights
+            )
+        ]
+    return [
+        CameraPublisher(sensor, sim.scene, context.namespace, lambda: sim.light_direction, lambda: sim.camera_lights)
+    ]
 
 
 def multicamera_interfaces(context: ModelContext, config: MultiCameraConfig) -> List[Periodic]:
