@@ -13,8 +13,8 @@ enum
   kMaxPointsPerPair = 150
 };
 
-/* physics.world.MIN_FDIR1_LENGTH */
-static const double kMinFdir1Length = 1e-6;
+/* physics.world.PARALLEL_FDIR1_TOLERANCE */
+static const double kParallelFdir1Tolerance = 1e-6;
 
 typedef struct
 {
@@ -284,8 +284,9 @@ static int merge_line_contact(dContactGeom* points)
   return 1;
 }
 
-/* As physics.world._friction_direction: fdir1 turned by the geom's rotation, projected onto the contact plane and
- * made unit length into out; 0 where it is (nearly) along the normal. */
+/* As physics.world._friction_direction: fdir1 turned by the geom's rotation into out, unprojected and
+ * unnormalised as gazebo-classic's ODEPhysics::Collide hands it to ODE; 0 where normal x fdir1 vanishes (Gazebo's
+ * ODE then uses dPlaneSpace, as stock ODE does without dContactFDir1). */
 static int friction_direction(dGeomID geom, const double* fdir1, const dReal* normal, dReal* out)
 {
   const dReal* r = dGeomGetRotation(geom); /* rows of 4 */
@@ -293,16 +294,14 @@ static int friction_direction(dGeomID geom, const double* fdir1, const dReal* no
   double wx = r[0] * x + r[1] * y + r[2] * z;
   double wy = r[4] * x + r[5] * y + r[6] * z;
   double wz = r[8] * x + r[9] * y + r[10] * z;
-  double along = wx * normal[0] + wy * normal[1] + wz * normal[2];
-  double tx = wx - along * normal[0];
-  double ty = wy - along * normal[1];
-  double tz = wz - along * normal[2];
-  double length = sqrt(tx * tx + ty * ty + tz * tz);
-  if (!(length > kMinFdir1Length))
+  double cx = normal[1] * wz - normal[2] * wy;
+  double cy = normal[2] * wx - normal[0] * wz;
+  double cz = normal[0] * wy - normal[1] * wx;
+  if (fabs(cx) <= kParallelFdir1Tolerance && fabs(cy) <= kParallelFdir1Tolerance && fabs(cz) <= kParallelFdir1Tolerance)
     return 0;
-  out[0] = tx / length;
-  out[1] = ty / length;
-  out[2] = tz / length;
+  out[0] = wx;
+  out[1] = wy;
+  out[2] = wz;
   return 1;
 }
 

@@ -36,8 +36,9 @@ ContactSurface = Tuple[
 ]
 # How a geom pair's contacts are made: surface, and whether a line contact is merged.
 PairContact = Tuple[ContactSurface, bool]
-# An fdir1 that, projected onto the contact plane, is shorter than this gives no friction direction (ODE's own).
-MIN_FDIR1_LENGTH = 1e-6
+# Where every component of normal x fdir1 is below this, Gazebo's ODE falls back to its own friction directions
+# (gazebo-classic deps/opende/src/joints/contact.cpp, dxJointContact::getInfo2: _dequal(t2, 0)).
+PARALLEL_FDIR1_TOLERANCE = 1e-6
 
 
 # PyODE frees an ode.World's C object when the wrapper dies, and dWorldDestroy frees
@@ -290,21 +291,20 @@ def _merge_line_contact(contacts: Sequence[ode.Contact]) -> Tuple[Sequence[ode.C
 def _friction_direction(
     rotation: Sequence[float], fdir1: Tuple[float, float, float], normal: Sequence[float]
 ) -> Optional[Tuple[float, float, float]]:
-    """``fdir1`` (in a geom's frame; ``rotation`` its world rotation, row-major) in the world, projected onto the
-    contact plane and made unit length, as ODE's dContactFDir1 requires (Gazebo hands ODE the turned vector
-    unprojected); None where it is (nearly) along the normal. contact_kernel.c's friction_direction, op for op."""
+    """``fdir1`` (in a geom's frame; ``rotation`` its world rotation, row-major) turned into the world and handed to
+    ODE as it is, neither projected onto the contact plane nor normalised, as gazebo-classic's ODEPhysics::Collide
+    does. ODE's contact joint then takes it as the first friction direction and normal x fdir1 as the second: a
+    wheel's fdir1 "1 0 0" turns with the wheel, so its friction rows tilt and shrink as it rolls, in Gazebo and here.
+    None where normal x fdir1 vanishes: Gazebo's ODE then falls back to dPlaneSpace, as stock ODE does without
+    dContactFDir1. contact_kernel.c's friction_direction, op for op."""
     x, y, z = fdir1
     wx = rotation[0] * x + rotation[1] * y + rotation[2] * z
     wy = rotation[3] * x + rotation[4] * y + rotation[5] * z
     wz = rotation[6] * x + rotation[7] * y + rotation[8] * z
-    along = wx * normal[0] + wy * normal[1] + wz * normal[2]
-    tx = wx - along * normal[0]
-    ty = wy - along * normal[1]
-    tz = wz - along * normal[2]
-    length = math.sqrt(tx * tx + ty * ty + tz * tz)
-    if not length > MIN_FDIR1_LENGTH:
+    cross = (normal[1] * wz - normal[2] * wy, normal[2] * wx - normal[0] * wz, normal[0] * wy - normal[1] * wx)
+    if all(abs(c) <= PARALLEL_FDIR1_TOLERANCE for c in cross):
         return None
-    return (tx / length, ty / length, tz / length)
+    return (wx, wy, wz)
 
 
 class PhysicsWorld:
