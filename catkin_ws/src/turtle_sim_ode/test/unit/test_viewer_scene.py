@@ -9,9 +9,11 @@ import pytest
 from conftest import MESH_PACKAGE, TURTLEBOT_URDF, fixture_paths
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from visualization_msgs.msg import Marker
 
 from turtle_sim_ode.models.builder import Transform, compose, quat_multiply
 from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.ros.scene_markers import marker_of
 from turtle_sim_ode.ros.viewer_config import FIXED_FRAME, SCENE_TOPIC, rviz_config
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.user_camera import DEFAULT_USER_CAMERA, MAX_ORBIT_PITCH, orbit_view
@@ -104,6 +106,25 @@ def test_meshes_keep_their_own_colours_and_scale() -> None:
     green = "<material><ambient>0 1 0 1</ambient></material>"
     sim.spawn_sdf("m", mesh_model("package://tso_mesh_worlds/meshes/green_block.dae", green), (0, 0, 0, 0, 0, 0))
     assert only_visuals(scene_of(sim), "m")[0].rgba == (0.0, 1.0, 0.0, 1.0)
+
+
+
+def test_mesh_markers_use_the_files_materials_only_without_a_visual_material() -> None:
+    """rviz (default_plugin/markers/mesh_resource_marker.cpp, MeshResourceMarker::onNewMessage) keeps a mesh's
+    embedded materials only with mesh_use_embedded_materials and colour 0 0 0 0; with another colour it draws them
+    tinted (a second pass at half opacity). Gazebo (rendering/Visual.cc, Visual::Load -> SetMaterial) replaces them
+    with the visual's material: turtlebot3_world's wall.dae is its file's grey-blue, Gazebo/FlatBlack on screen."""
+    sim = Simulation()
+    sim.resources = fixture_paths()
+    flat_black = "<material><script><name>Gazebo/FlatBlack</name></script></material>"
+    for material, embedded, colour in [("", True, OWN_COLOURS), (flat_black, False, (0.1, 0.1, 0.1, 1.0))]:
+        sim.spawn_sdf("m", mesh_model("package://tso_mesh_worlds/meshes/green_block.dae", material), (0,) * 6)
+        mesh = only_visuals(scene_of(sim), "m")[0]
+        marker = marker_of("m", 0, mesh)
+        assert marker.type == Marker.MESH_RESOURCE and marker.mesh_resource == "file://" + mesh.mesh_path
+        assert marker.mesh_use_embedded_materials is embedded
+        assert (marker.color.r, marker.color.g, marker.color.b, marker.color.a) == pytest.approx(colour)
+        sim.delete("m")
 
 
 @pytest.mark.parametrize(

@@ -2,7 +2,7 @@
 turtlebot_gazebo: launch/turtlebot_world.launch (args gui and world_file, the TURTLEBOT_* variables and defaults,
 depthimage_to_laserscan's params and remaps), launch/includes/kobuki.launch.xml (model mobile_base, the robot file
 name pattern, the multiplexer's output remap), env-hooks/25.turtlebot-gazebo.sh.em, worlds/playground.world (model
-names and poses); and turtlebot/turtlebot (melodic) turtlebot_bringup/param/mux.yaml (the inputs)."""
+names and poses, the first view); and turtlebot/turtlebot (melodic) turtlebot_bringup/param/mux.yaml (the inputs)."""
 from __future__ import annotations
 
 import math
@@ -100,6 +100,15 @@ def test_playground_has_upstreams_models_near_their_poses():
     cube = [i for i in world.findall("include") if i.findtext("name") == "cube_20k"][0]
     model = PACKAGE_ROOT / "models" / cube.findtext("uri").replace("model://", "")
     assert "<mesh>" in (model / "model.sdf").read_text()  # the mesh cube collides as a mesh
+
+
+def test_playground_opens_on_upstreams_first_view():
+    """upstream's <gui><camera name='user_camera'><pose>: the viewer's first view looks straight down from 27.6 m."""
+    world = ET.parse(str(PACKAGE_ROOT / "worlds" / "playground.world")).getroot().find("world")
+    camera = world.find("gui/camera")
+    assert camera.get("name") == "user_camera"
+    pose = [float(v) for v in camera.findtext("pose").split()]
+    assert pose == pytest.approx([1.33336, -0.422442, 27.6101, 3e-06, 1.5698, 3.04015])
 
 
 @pytest.mark.parametrize("name", ["turtlebot_world.launch", "turtlebot_empty_world.launch"])

@@ -18,7 +18,7 @@ from std_msgs.msg import ColorRGBA, Header
 from visualization_msgs.msg import Marker, MarkerArray
 
 from turtle_sim_ode.world.simulation import Simulation
-from turtle_sim_ode.world.viewer_scene import Placed, SceneTracker, SceneUpdate, SceneVisual
+from turtle_sim_ode.world.viewer_scene import OWN_COLOURS, Placed, SceneTracker, SceneUpdate, SceneVisual
 
 TOPIC = "/gazebo/scene_markers"
 FRAME = "world"
@@ -36,7 +36,9 @@ def marker_of(model: str, index: int, visual: SceneVisual) -> Marker:
     marker.color = ColorRGBA(*visual.rgba)
     if visual.shape == "mesh":
         marker.mesh_resource = "file://" + visual.mesh_path
-        marker.mesh_use_embedded_materials = True  # a colour of 0 0 0 0 keeps the file's own
+        # The file's own materials only where the visual has none: rviz draws embedded materials tinted by any
+        # other colour (a second pass at half opacity), where Gazebo replaces them with the visual's material.
+        marker.mesh_use_embedded_materials = visual.rgba == OWN_COLOURS
     return marker
 
 
