@@ -66,7 +66,7 @@ def test_machine_peer_and_targets_are_recorded(results):
     machine = results["machine"]
     assert machine["nproc"] >= 1 and machine["cpu_model"] and machine["python"]
     assert results["peer"]["status"] == "skipped"
-    assert len(results["targets"]) == 16
+    assert len(results["targets"]) == 17
 
 
 def test_camera_runs_render_at_their_rate_only_when_watched(results):
