@@ -2,7 +2,8 @@
 """Benchmark of the turtle_sim_ode simulator (issue #8): prints a table and writes JSON.
 
 1. physics only (no ROS): Simulation.step of one TurtleBot, and the bare PyODE floor for the same bodies;
-2. the full node unthrottled (real_time_factor 0), every sensor subscribed: RTF for 1, 5, 10 robots at 1 and 10 ms;
+2. the full node unthrottled (real_time_factor 0), every sensor subscribed: RTF for 1, 5, 10 robots at 1 and 10 ms,
+   and 1 robot at 1 ms writing each message at once (write_batch_period 0, issue #33);
 3. real time (real_time_factor 1): achieved RTF and the spread of /clock intervals;
 4. roslaunch turtlebot_world.launch to the first /odom message;
 5. PyBullet (in a venv of its own under .cache/) on the same URDF: steps/s and the circle radius it drives;

@@ -14,6 +14,9 @@ from ros_master import master
 from ros_processes import Processes
 
 
+UNBATCHED = {"write_batch_period": 0.0}  # every message written when published
+
+
 def package_config(name: str) -> Dict[str, Any]:
     """The default parameters in the package's config/``name``."""
     import yaml
@@ -43,11 +46,13 @@ def node_rtf(
     camera: Optional[Tuple[int, int, float]] = None,
     watch_camera: bool = False,
     watch_scene: bool = False,
+    settings: Optional[Dict[str, Any]] = None,
 ) -> Dict[str, Any]:
     """RTF and /clock intervals of the node in empty_world.launch with ``robots`` TurtleBots spawned (the first in
-    a ``room``, with ``camera``, a viewer's scene subscriber with ``watch_scene``: see bench_probe.measure_rtf_task)."""
+    a ``room``, with ``camera``, a viewer's scene subscriber with ``watch_scene``: see bench_probe.measure_rtf_task),
+    with ``settings`` over config/simulator.yaml's."""
     physics = dict(package_config("physics.yaml"), time_step=time_step)
-    config = package_config("simulator.yaml")
+    config = dict(package_config("simulator.yaml"), **(settings or {}))
     config["diff_drive"]["cmd_timeout"] = 0.0  # commands are sent once: the drives must not time out, at any RTF
     physics_path = write_yaml(os.path.join(processes.log_dir, name + "-physics.yaml"), physics)
     config_path = write_yaml(os.path.join(processes.log_dir, name + "-simulator.yaml"), config)
@@ -68,6 +73,7 @@ def node_rtf(
 def full_node(plan: Plan, processes: Processes) -> Dict[str, Any]:
     """Section 2: the unthrottled node for each time step and robot count."""
     runs = []
+    unbatched: Dict[str, Any] = {}
     for time_step in plan.time_steps:
         for robots in plan.robot_counts:
             name = "rtf-%drobots-%gms" % (robots, time_step * 1e3)
@@ -78,10 +84,16 @@ def full_node(plan: Plan, processes: Processes) -> Dict[str, Any]:
             run["wall_ms_per_sim_s_per_robot"] = run["wall_ms_per_sim_s"] / robots
             del run["clock_interval_ms"]
             runs.append(run)
+            if (robots, time_step) == (1, 0.001):  # issue #33: next to it, each message written at once, as before
+                print("  full node: 1 robot, 1 ms, write_batch_period 0 ...", flush=True)
+                unbatched = node_rtf(
+                    processes, "unbatched", 1, 0.001, 0.0, plan.warmup_s, plan.window_s, settings=UNBATCHED
+                )
     return {
         "real_time_factor": 0.0,
         "sensors": "all subscribed: /clock, /tf and each robot's odom, joint_states, imu, scan",
         "runs": runs,
+        "unbatched_1ms": {key: unbatched[key] for key in ("rtf", "node_cpu_share") if key in unbatched},
         "linearity_at_1ms": {
             "wall": linearity(runs, 0.001, "wall_ms_per_sim_s"),
             "node_cpu": linearity(runs, 0.001, "node_cpu_ms_per_sim_s"),

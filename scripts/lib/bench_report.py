@@ -246,6 +246,12 @@ def table(results: Dict[str, Any]) -> str:
                     r["clock_hz"],
                 )
             )
+        unbatched, batched = f.get("unbatched_1ms"), find_run({"full_node": f}, 1, 0.001)
+        if unbatched and batched:
+            rows.append(
+                "1 robot, 1 ms, each message written at once (write_batch_period 0): RTF %.2f, batched %.2f (x %.2f)"
+                % (unbatched["rtf"], batched["rtf"], batched["rtf"] / unbatched["rtf"])
+            )
         linear = f["linearity_at_1ms"]
         if linear["wall"] is None:
             rows.append("linearity in robots: n/a (needs 3 robot counts)")

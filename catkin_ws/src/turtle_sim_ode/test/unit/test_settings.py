@@ -9,7 +9,7 @@ def test_defaults_match_the_documented_ones():
     assert settings.real_time_factor == 1.0 and not settings.paused
     assert settings.pub_clock_frequency == 100.0 and settings.publish_rate == 50.0
     assert settings.physics.time_step == 0.001 and settings.physics.solver == "quick"
-    assert settings.physics.solver_iterations == 50
+    assert settings.physics.solver_iterations == 50 and settings.write_batch_period == 0.001
     assert (settings.odom_frame, settings.base_frame) == ("odom", "base_footprint")
 
 
@@ -49,6 +49,8 @@ def test_values_are_taken():
         ({"paused": "yes"}, "~paused must be of type bool"),
         ({"pub_clock_frequency": 0}, "~pub_clock_frequency must be > 0.0"),
         ({"publish_rate": True}, "~publish_rate must be a finite number"),
+        ({"write_batch_period": -0.001}, "~write_batch_period must be >= 0.0"),
+        ({"write_batch_period": 1.0}, "~write_batch_period must be <= 0.1"),
         ({"odom_frame": ""}, "~odom_frame must not be empty"),
         ({"base_frame": 3}, "~base_frame must be of type str"),
         ({"spawn_x": "left"}, "~spawn_x must be a finite number"),

@@ -32,7 +32,7 @@ from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, sim_stamp
 from turtle_sim_ode.ros.plugins import model_interfaces
 from turtle_sim_ode.ros.scene_markers import SceneMarkers
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
-from turtle_sim_ode.ros.wire import ClockPacker, PackedPublisher, release, stamp_parts
+from turtle_sim_ode.ros.wire import OUTBOX, ClockPacker, PackedPublisher, release, stamp_parts
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.values import WorldError
 
@@ -244,11 +244,20 @@ class SimulatorNode:
             self._publish_clock(self._now)
             self._next_clock = self._now + 1.0 / self.settings.pub_clock_frequency
         pacing = Pacing(time.monotonic(), self._now, self.sim.real_time_factor)
+        OUTBOX.period_s = self.settings.write_batch_period
+        OUTBOX.hold(OUTBOX.period_s > 0)  # this loop's messages written a connection at a time: see ros.wire
+        try:
+            self._run_paced(pacing)
+        finally:
+            OUTBOX.hold(False)
+
+    def _run_paced(self, pacing: Pacing) -> None:
         while not rospy.is_shutdown() and not self.stop_requested.is_set():
             if self._wake.is_set():
                 self._wake.clear()
                 pacing.restart(time.monotonic(), self.sim.sim_time, self.sim.real_time_factor)
             if not self._unpaused.is_set() or self._lockstep.locked():
+                OUTBOX.flush()  # nothing waits while the loop does
                 self._wake.wait(MAX_PACING_WAIT_S)
                 self._wake.set()  # re-anchor once running again
                 continue
@@ -257,6 +266,7 @@ class SimulatorNode:
                 pacing.restart(time.monotonic(), self.sim.sim_time, rtf)
             wait = pacing.wait(time.monotonic(), self._now)
             if wait > 0:
+                OUTBOX.flush()
                 self._wake.wait(min(wait, MAX_PACING_WAIT_S))
                 continue
             with self.lock:
@@ -268,6 +278,7 @@ class SimulatorNode:
                 elif rtf == 0:  # unpaced, each step keeps its own wall time: sim time never runs ahead
                     self._step_quietly()
                 self._advance()
+            OUTBOX.flush_due()
 
     def _all_interfaces(self) -> List[Periodic]:
         return [interface for interfaces in self.interfaces.values() for interface in interfaces]

@@ -43,6 +43,8 @@ SPAWN_AXES = (
     ("pitch", math.inf),
     ("yaw", math.inf),
 )
+# ~write_batch_period's limit (wall s): longer would hold messages a subscriber would see as late.
+MAX_WRITE_BATCH_PERIOD_S = 0.1
 
 
 class SettingsError(ValueError):
@@ -56,6 +58,7 @@ class SimulatorSettings:
     pub_clock_frequency: float = 100.0  # Hz of sim time
     publish_rate: float = 50.0  # odom, tf, joint_states, ground truth: Hz of sim time
     model_states_rate: float = 50.0  # /gazebo/model_states and link_states (while subscribed): Hz of sim time
+    write_batch_period: float = 0.001  # wall s a step-rate message may wait to go out with others (ros.wire)
     world_name: str = ""  # an SDF world file loaded at start-up
     odom_frame: str = "odom"
     base_frame: str = "base_footprint"
@@ -161,6 +164,9 @@ def settings_from_params(params: Mapping[str, Any]) -> SimulatorSettings:
         pub_clock_frequency=number_param(params, "pub_clock_frequency", defaults.pub_clock_frequency, 0.0, True),
         publish_rate=number_param(params, "publish_rate", defaults.publish_rate, 0.0, True),
         model_states_rate=number_param(params, "model_states_rate", defaults.model_states_rate, 0.0, True),
+        write_batch_period=number_param(
+            params, "write_batch_period", defaults.write_batch_period, 0.0, maximum=MAX_WRITE_BATCH_PERIOD_S
+        ),
         publish_tf=typed_param(params, "publish_tf", defaults.publish_tf, bool),
         enable_ros_network=typed_param(params, "enable_ros_network", defaults.enable_ros_network, bool),
         step_simulation_service=typed_param(params, "step_simulation_service", defaults.step_simulation_service, bool),

@@ -80,6 +80,8 @@ class VelodyneCloud:
         self._low = max(config.min_range, config.range_min)
         self._high = min(config.max_range, config.range_max)
         self._directions = np.ascontiguousarray(np.transpose(directions, (1, 0, 2)))  # (azimuths, rings, 3)
+        # Each axis apart, contiguous: a mask picks from these at a tenth of the cost of picking rows of three.
+        self._axes = [np.ascontiguousarray(self._directions[..., axis]) for axis in range(3)]
         self._rings = np.broadcast_to(np.arange(config.vertical_samples, dtype=np.uint16), self._directions.shape[:2])
 
     def points(self, ranges: np.ndarray) -> Tuple[np.ndarray, int, int, bool]:
@@ -93,8 +95,9 @@ class VelodyneCloud:
         if not config.organize_cloud:
             in_band &= (measured > self._low) & (measured < self._high) & (intensity >= config.min_intensity)
             cloud = np.zeros(int(in_band.sum()), dtype=POINT)
-            xyz = noisy[in_band][:, None] * self._directions[in_band]
-            cloud["x"], cloud["y"], cloud["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+            distance = noisy[in_band]
+            for field, axis in zip("xyz", self._axes):
+                cloud[field] = distance * axis[in_band]
             cloud["ring"] = self._rings[in_band]
             return cloud, 1, len(cloud), True
         cloud = np.zeros(measured.shape, dtype=POINT)
