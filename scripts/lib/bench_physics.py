@@ -54,7 +54,8 @@ class BarePyOde:
         import ode
         from turtle_sim_ode.physics import ode_constants
         from turtle_sim_ode.models.builder import compose, inverse
-        from turtle_sim_ode.physics.world import combine_surfaces, configure_world
+        from turtle_sim_ode.physics.settings import configure_world
+        from turtle_sim_ode.physics.surfaces import combine_surfaces
 
         physics, model = sim.physics, sim.models[MODEL]
         params = physics.params

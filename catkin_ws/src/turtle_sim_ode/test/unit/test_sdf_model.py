@@ -11,7 +11,9 @@ from turtle_sim_ode.models.sdf import PLANE_THICKNESS, Include, parse_sdf_model,
 from turtle_sim_ode.models.urdf import Box, GazeboSurface, Mesh, parse_urdf, Pose
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.physics import ode_constants as oc
-from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams
+from turtle_sim_ode.physics.settings import PhysicsParams
+from turtle_sim_ode.physics.surfaces import SurfaceParams
+from turtle_sim_ode.physics.world import PhysicsWorld
 
 NO_GRAVITY = PhysicsParams(gravity=(0.0, 0.0, 0.0))
 WORLDS = PACKAGE_ROOT / "worlds"

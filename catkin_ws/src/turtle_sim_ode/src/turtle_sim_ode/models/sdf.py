@@ -70,7 +70,7 @@ from turtle_sim_ode.models.urdf import (
 )
 
 if TYPE_CHECKING:
-    from turtle_sim_ode.physics.world import PhysicsParams
+    from turtle_sim_ode.physics.settings import PhysicsParams
 
 Version = Tuple[int, int]
 

@@ -16,7 +16,8 @@ from turtle_sim_ode.models.builder import (
     quat_rotate,
 )
 from turtle_sim_ode.models.urdf import RobotModel
-from turtle_sim_ode.physics.world import ContactWatch, PhysicsWorld
+from turtle_sim_ode.physics.contacts import ContactWatch
+from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.rays import ray_distance, world_geoms
 
 _NO_ROTATION: Quat = (1.0, 0.0, 0.0, 0.0)

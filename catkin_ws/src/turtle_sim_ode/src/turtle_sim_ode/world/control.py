@@ -28,7 +28,8 @@ from turtle_sim_ode.models.builder import (
 from turtle_sim_ode.models.urdf import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
-from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsWorld
+from turtle_sim_ode.physics.settings import MAX_GRAVITY
+from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.world.plugins import DriveRobot
 from turtle_sim_ode.world.joint_effort import effort_applier
 from turtle_sim_ode.world.kinematics import add, conjugate, cross, set_configuration, set_rigid_twist, sub

@@ -14,7 +14,8 @@ from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.sdf import World, _rpy, parse_sdf_model
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
-from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
+from turtle_sim_ode.physics.settings import PhysicsParams
+from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors
 from turtle_sim_ode.sensors.scene import Scene
 from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
