@@ -14,7 +14,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from turtle_sim_ode.models.resources import ResourcePaths
-from turtle_sim_ode.models.sdf import parse_sdf_model, parse_sdf_world
+from turtle_sim_ode.models.sdf import parse_sdf_model
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.ros.plugins.elevator import floor_number

@@ -23,7 +23,7 @@ from workspace_testing.timing import assert_within, timed
 from turtle_sim_ode.models.includes import MAX_INCLUDE_DEPTH, resolve_includes
 from turtle_sim_ode.models.meshes import MAX_TRIANGLES, read_mesh
 from turtle_sim_ode.models.resources import ResourcePaths
-from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.sensors import scene as scene_module
 from turtle_sim_ode.sensors.laser import LaserScanner

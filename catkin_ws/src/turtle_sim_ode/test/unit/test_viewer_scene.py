@@ -11,7 +11,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from turtle_sim_ode.models.builder import Transform, compose, quat_multiply
-from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.ros.viewer_config import FIXED_FRAME, SCENE_TOPIC, rviz_config
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.user_camera import DEFAULT_USER_CAMERA, MAX_ORBIT_PITCH, orbit_view

@@ -11,7 +11,9 @@ from turtle_sim_ode.models.includes import resolve_includes, sun_lights
 from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.models.meshes import load_meshes, uses_meshes
 from turtle_sim_ode.models.resources import ResourcePaths
-from turtle_sim_ode.models.sdf import World, _rpy, parse_sdf_model
+from turtle_sim_ode.models.sdf import parse_sdf_model
+from turtle_sim_ode.models.sdf_world import World
+from turtle_sim_ode.models.transforms import rpy_of
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
 from turtle_sim_ode.physics.settings import PhysicsParams
@@ -188,7 +190,7 @@ class Simulation(WorldControl, LightControl):
         else:
             raise WorldError(f"pose must be (x, y, z, roll, pitch, yaw) or (position, quaternion), " f"got {pose!r}")
         (x, y, z), (qx, qy, qz, qw) = self.to_world(reference_frame, *given)
-        roll, pitch, yaw = _rpy((qw, qx, qy, qz))
+        roll, pitch, yaw = rpy_of((qw, qx, qy, qz))
         return (x, y, z, roll, pitch, yaw)
 
     def spawn_urdf(
