@@ -20,7 +20,8 @@ from turtle_sim_ode.physics.settings import PhysicsParams
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors
 from turtle_sim_ode.sensors.scene import Scene
-from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
+from turtle_sim_ode.world.control import WorldControl
+from turtle_sim_ode.world.entities import SCOPE, WORLD_FRAMES
 from turtle_sim_ode.world.lights import LightControl
 from turtle_sim_ode.world.plugins import DriveRobot, ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
