@@ -10,7 +10,8 @@ from turtle_sim_ode.models.builder import build_model, compose, inverse, pose_tr
 from turtle_sim_ode.models.sdf import parse_sdf_model
 from turtle_sim_ode.models.sdf_parts import PLANE_THICKNESS
 from turtle_sim_ode.models.sdf_world import Include, parse_sdf_world
-from turtle_sim_ode.models.urdf import Box, GazeboSurface, Mesh, parse_urdf, Pose
+from turtle_sim_ode.models.description import Box, GazeboSurface, Mesh, Pose
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.settings import PhysicsParams

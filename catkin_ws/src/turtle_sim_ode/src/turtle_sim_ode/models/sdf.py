@@ -13,7 +13,7 @@ from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.materials import sdf_visual_alpha, sdf_visual_color
 from turtle_sim_ode.models.nested import flatten_nested_models, read_pose
-from turtle_sim_ode.models.urdf import (
+from turtle_sim_ode.models.description import (
     Collision,
     GazeboSurface,
     Joint,
@@ -24,13 +24,9 @@ from turtle_sim_ode.models.urdf import (
     RobotModel,
     SensorElement,
     Vec3,
-    WORLD_LINK,
     Visual,
-    _find_root,
-    _vec3,
-    check_size,
-    drawn_shape,
 )
+from turtle_sim_ode.models.urdf import WORLD_LINK, _find_root, _vec3, check_size, drawn_shape
 from turtle_sim_ode.models.sdf_parts import (
     BARE_MODEL_VERSION,
     IDENTITY,

@@ -15,16 +15,9 @@ from turtle_sim_ode.models.text import (
     read_optional_number,
     required_attribute,
 )
+from turtle_sim_ode.models.description import Box, Cylinder, GazeboPlugin, Geometry, Inertial, Pose, Sphere, Vec3
 from turtle_sim_ode.models.urdf import (
     MAX_LENGTH,
-    Box,
-    Cylinder,
-    GazeboPlugin,
-    Geometry,
-    Inertial,
-    Pose,
-    Sphere,
-    Vec3,
     _bounded,
     _check_mass,
     _is_positive_definite,

@@ -12,7 +12,8 @@ from turtle_sim_ode.models.nested import read_pose
 from turtle_sim_ode.models.sdf import parse_model
 from turtle_sim_ode.models.sdf_parts import optional_float, read_bool, read_float, read_plugin, read_version
 from turtle_sim_ode.models.text import ModelError, child_text, parse_xml
-from turtle_sim_ode.models.urdf import GazeboPlugin, Pose, RobotModel, Vec3, _vec3
+from turtle_sim_ode.models.description import GazeboPlugin, Pose, RobotModel, Vec3
+from turtle_sim_ode.models.urdf import _vec3
 from turtle_sim_ode.models.world_state import WorldState, parse_world_state
 
 if TYPE_CHECKING:

@@ -22,7 +22,7 @@ from tf2_msgs.msg import TFMessage
 from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepSimulationResponse
 
 from turtle_sim_ode.models.sdf_world import parse_sdf_world
-from turtle_sim_ode.models.urdf import Pose
+from turtle_sim_ode.models.description import Pose
 from turtle_sim_ode.ros.resource_paths import resource_paths
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.gazebo_api import MAX_RAYS_PER_MODEL, GazeboApi, TopicTypes, known_topic_types, summarise

@@ -15,7 +15,7 @@ from turtle_sim_ode.models.builder import (
     inverse,
     quat_rotate,
 )
-from turtle_sim_ode.models.urdf import RobotModel
+from turtle_sim_ode.models.description import RobotModel
 from turtle_sim_ode.physics.contacts import ContactWatch
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.rays import ray_distance, world_geoms

@@ -15,7 +15,8 @@ from turtle_sim_ode.models.sdf import parse_sdf_model
 from turtle_sim_ode.models.sdf_world import World
 from turtle_sim_ode.models.transforms import rpy_of
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
+from turtle_sim_ode.models.description import RobotModel
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.physics.settings import PhysicsParams
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors

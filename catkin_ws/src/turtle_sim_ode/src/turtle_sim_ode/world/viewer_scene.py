@@ -19,7 +19,7 @@ from turtle_sim_ode.models.materials import DEFAULT_COLOR, GAZEBO_MATERIALS
 from turtle_sim_ode.models.meshes import MeshFiles, mesh_file
 from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import Box, Cylinder, Mesh, Sphere, Visual
+from turtle_sim_ode.models.description import Box, Cylinder, Mesh, Sphere, Visual
 
 Vec3 = Tuple[float, float, float]
 RGBA = Tuple[float, float, float, float]
