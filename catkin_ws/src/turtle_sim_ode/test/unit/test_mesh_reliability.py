@@ -190,13 +190,15 @@ def api(tmp_path, monkeypatch):
     gazebo_api = pytest.importorskip("turtle_sim_ode.ros.gazebo_api")
     import rospy
 
+    from turtle_sim_ode.ros import spawn
+
     class Registration:
         def __init__(self, *args, **kwargs) -> None:
             pass
 
     for name in ("Service", "Publisher", "Subscriber"):
         monkeypatch.setattr(rospy, name, Registration)
-    monkeypatch.setattr(gazebo_api, "known_topic_types", lambda: {})
+    monkeypatch.setattr(spawn, "known_topic_types", lambda: {})
     monkeypatch.setattr(gazebo_api, "PhysicsReconfigure", Registration)  # a dynamic_reconfigure server needs a master
     sim = Simulation()
     sim.resources = scratch_paths(tmp_path)
