@@ -23,11 +23,11 @@ import tempfile
 from typing import Any, Dict, Optional, Sequence
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from bench_report import close_machine, machine, write_report  # noqa: E402
-from bench_rqt_sections import console_flood, plot_injected, plot_real_time  # noqa: E402
-from process_stats import cpu_ticks  # noqa: E402
-from ros_master import master  # noqa: E402
-from ros_processes import Processes, ToolError  # noqa: E402
+from bench.report import close_machine, machine, write_report  # noqa: E402
+from bench.rqt_sections import console_flood, plot_injected, plot_real_time  # noqa: E402
+from ros_run.process_stats import cpu_ticks  # noqa: E402
+from ros_run.master import master  # noqa: E402
+from ros_run.processes import Processes, ToolError  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 DEFAULT_JSON = os.path.join(REPO, "bench_results", "bench_rqt.json")

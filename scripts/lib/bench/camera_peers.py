@@ -14,13 +14,13 @@ import time
 from typing import Any, Dict, List, Sequence, Tuple
 
 import numpy as np
-from bench_camera import CAMERAS, MODEL, turtlebot_in_room
-from peer_venv import venv_with
-from process_stats import cpu_ticks
+from bench.camera_scene import CAMERAS, MODEL, turtlebot_in_room
+from peers.venv import venv_with
+from ros_run.process_stats import cpu_ticks
 
-REPO = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+REPO = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", ".."))
 VENV = os.path.join(REPO, ".cache", "renderer-venv")
-PEER_SCRIPT = os.path.join(REPO, "scripts", "lib", "renderer_peers.py")
+PEER_SCRIPT = os.path.join(REPO, "scripts", "lib", "peers", "renderer_peers.py")
 # Library: (pip installs in order, the check that they work). pyrender pins PyOpenGL 3.1.0, whose OSMesa binding
 # lacks what pyrender calls: 3.1.7 over it (pip warns of the pin, pyrender runs).
 LIBRARIES: Dict[str, Tuple[List[List[str]], str]] = {

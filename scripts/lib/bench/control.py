@@ -8,8 +8,8 @@ from __future__ import annotations
 import os
 from typing import Any, Dict
 
-from bench_physics import best_steps_per_second
-from bench_plan import PACKAGE, Plan
+from bench.physics import best_steps_per_second
+from bench.plan import PACKAGE, Plan
 
 BASE_URDF = os.path.join(PACKAGE, "test", "models", "four_wheel_base.urdf")
 CONTROLLERS = {

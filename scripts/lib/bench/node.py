@@ -7,11 +7,11 @@ import statistics
 import time
 from typing import Any, Dict, List, Optional, Tuple
 
-from bench_camera import CAMERAS, TARGET_SHARE
-from bench_plan import CALLER_ID, PACKAGE, STARTUP_TIMEOUT_S, BenchError, Plan
-from bench_probe import Probe, first_odom_task, measure_rtf_task
-from ros_master import master
-from ros_processes import Processes
+from bench.camera_scene import CAMERAS, TARGET_SHARE
+from bench.plan import CALLER_ID, PACKAGE, STARTUP_TIMEOUT_S, BenchError, Plan
+from bench.probe import Probe, first_odom_task, measure_rtf_task
+from ros_run.master import master
+from ros_run.processes import Processes
 
 
 def package_config(name: str) -> Dict[str, Any]:

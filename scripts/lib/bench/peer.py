@@ -7,12 +7,12 @@ import os
 import subprocess
 from typing import Any, Dict, Optional, Tuple
 
-from bench_physics import circle_radius
-from bench_plan import CIRCLE, REPO, URDF_PATH, BenchError, Plan
-from peer_venv import venv_with
+from bench.physics import circle_radius
+from bench.plan import CIRCLE, REPO, URDF_PATH, BenchError, Plan
+from peers.venv import venv_with
 
 VENV = os.path.join(REPO, ".cache", "bench-venv")
-PEER_SCRIPT = os.path.join(REPO, "scripts", "lib", "pybullet_peer.py")
+PEER_SCRIPT = os.path.join(REPO, "scripts", "lib", "peers", "pybullet_peer.py")
 PEER_PACKAGES = ("pybullet", "numpy")  # pybullet's import fails without numpy, which it does not declare
 PIP_TIMEOUT_S = 900  # building PyBullet from its sdist is acceptable up to this
 PEER_TIMEOUT_S = 600

@@ -7,7 +7,7 @@ import math
 import time
 from typing import Any, Callable, Dict, List, Sequence, Tuple
 
-from bench_plan import CIRCLE, MODEL, URDF_PATH, BenchError, Plan
+from bench.plan import CIRCLE, MODEL, URDF_PATH, BenchError, Plan
 
 CIRCLE_SAMPLE_PERIOD_S = 0.01
 CIRCLE_SAMPLES_FROM_S = 1.0  # leave out the start (the robot accelerates onto the circle)

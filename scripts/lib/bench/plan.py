@@ -6,9 +6,9 @@ import os
 from dataclasses import dataclass
 from typing import Tuple
 
-from ros_processes import ToolError
+from ros_run.processes import ToolError
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 PACKAGE = os.path.join(REPO, "catkin_ws", "src", "turtle_sim_ode")
 URDF_PATH = os.path.join(PACKAGE, "urdf", "turtlebot.urdf")
 MODEL = "mobile_base"

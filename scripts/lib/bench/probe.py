@@ -12,14 +12,14 @@ import time
 import traceback
 from typing import Any, Callable, Dict, List, Optional, Sequence, Set, Tuple
 
-from bench_camera import CAMERA_TOPICS, room_sdf, with_camera
-from bench_plan import CALLER_ID, CIRCLE, STARTUP_TIMEOUT_S, URDF_PATH, BenchError
-from process_stats import cpu_seconds
-from ros_master import Master, node_pid
+from bench.camera_scene import CAMERA_TOPICS, room_sdf, with_camera
+from bench.plan import CALLER_ID, CIRCLE, STARTUP_TIMEOUT_S, URDF_PATH, BenchError
+from ros_run.process_stats import cpu_seconds
+from ros_run.master import Master, node_pid
 
 from turtle_sim_ode.analysis.waiting import wait_for
-from ros_processes import SHUTDOWN_TIMEOUT_S, ToolError
-from tcpros_reader import Reader, TopicStream, clock_stamp
+from ros_run.processes import SHUTDOWN_TIMEOUT_S, ToolError
+from ros_run.tcpros_reader import Reader, TopicStream, clock_stamp
 
 ROBOT_SPACING_M = 3.0  # between spawn points: 1 m circles never meet
 ROBOTS_PER_ROW = 5

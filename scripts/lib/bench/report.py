@@ -9,12 +9,12 @@ import shutil
 import subprocess
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
-from bench_camera import CAMERAS, TARGET_SHARE
-from bench_camera import table as camera_table
-from bench_lidar import table as lidar_table
-from bench_control import table as control_table
-from bench_scaling import table as scaling_table
-from process_stats import cpu_ticks
+from bench.camera_scene import CAMERAS, TARGET_SHARE
+from bench.camera import table as camera_table
+from bench.lidar import table as lidar_table
+from bench.control import table as control_table
+from bench.scaling import table as scaling_table
+from ros_run.process_stats import cpu_ticks
 
 
 def debian_version(package: str) -> str:

@@ -3,7 +3,7 @@
 in 10 ms batches, once a subscriber is connected; prints `sent N` at the end. Severities cycle through the five
 levels so that every colour is drawn.
 
-  bench_rqt_log_publisher.py --rate 1000 --seconds 30
+  rqt_log_publisher.py --rate 1000 --seconds 30
 """
 import argparse
 import time
@@ -31,7 +31,7 @@ def main() -> None:
         while sent < due:
             log = Log(level=LEVELS[sent % len(LEVELS)], name="/bench_log_source", msg="bench message %d" % sent)
             log.header.stamp = rospy.Time.now()
-            log.file, log.function, log.line, log.topics = "bench_rqt_log_publisher.py", "main", 40, ["/rosout_agg"]
+            log.file, log.function, log.line, log.topics = "rqt_log_publisher.py", "main", 40, ["/rosout_agg"]
             publisher.publish(log)
             sent += 1
         time.sleep(BATCH_PERIOD_S)

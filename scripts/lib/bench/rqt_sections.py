@@ -8,8 +8,8 @@ import statistics
 import time
 from typing import Any, Callable, Dict, List
 
-from process_stats import rss_bytes
-from ros_processes import Processes, ToolError
+from ros_run.process_stats import rss_bytes
+from ros_run.processes import Processes, ToolError
 
 PLOT_RATE_HZ = 62.5  # turtlesim's pose rate
 PLOT_FIELDS = ("x", "y", "theta")
@@ -228,7 +228,7 @@ def console_flood(app, rate: float, seconds: float, processes: Processes, ros_en
     publisher = processes.start(
         [
             "/usr/bin/python3",
-            os.path.join(here, "bench_rqt_log_publisher.py"),
+            os.path.join(here, "rqt_log_publisher.py"),
             "--rate",
             str(rate),
             "--seconds",

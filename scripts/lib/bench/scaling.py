@@ -9,7 +9,8 @@ needed; each case is measured in turns with its baseline, and reported as a rati
 - a 1000-link chain of continuous joints (falling freely, high above the ground: its joints alone), against real
   time.
 
-``scaling_cost`` returns a dict for bench_sim's JSON; run alone (``--quick`` for a shorter run) it prints the table.
+``scaling_cost`` returns a dict for bench_sim's JSON; run alone (``python3 -m bench.scaling``
+in scripts/lib; ``--quick`` for a shorter run) it prints the table.
 """
 from __future__ import annotations
 
@@ -19,8 +20,8 @@ import os
 import sys
 from typing import Any, Callable, Dict, List, Optional, Sequence
 
-from bench_camera import best_seconds
-from bench_plan import MODEL, PACKAGE, URDF_PATH
+from bench.camera import best_seconds
+from bench.plan import MODEL, PACKAGE, URDF_PATH
 
 IMUS = 300
 CHAIN_LINKS = 1000

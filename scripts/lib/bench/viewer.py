@@ -7,9 +7,9 @@ from __future__ import annotations
 import statistics
 from typing import Any, Dict, List
 
-from bench_node import node_rtf
-from bench_plan import Plan
-from ros_processes import Processes
+from bench.node import node_rtf
+from bench.plan import Plan
+from ros_run.processes import Processes
 
 TARGET_RATIO = 0.9
 

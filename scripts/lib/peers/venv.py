@@ -1,4 +1,4 @@
-"""A venv of its own under .cache/ for an optional benchmark peer (PyBullet for bench_peer, the offscreen renderers
+"""A venv of its own under .cache/ for an optional benchmark peer (PyBullet for bench.peer, the offscreen renderers
 for camera_peers): made by /usr/bin/python3 on first use, its packages from PyPI, under a lock so that concurrent
 runs install once."""
 from __future__ import annotations

@@ -10,7 +10,7 @@ import time
 import xmlrpc.client
 from typing import Iterator, List, Sequence
 
-from ros_processes import Processes, ToolError, free_port
+from ros_run.processes import Processes, ToolError, free_port
 
 
 class Master:

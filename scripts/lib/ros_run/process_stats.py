@@ -8,7 +8,7 @@ import os
 import time
 from typing import Any, Dict, Tuple
 
-from ros_processes import ToolError
+from ros_run.processes import ToolError
 
 STEADY_READS = 5  # threads and fds: the least of this many reads 50 ms apart (a service connection's thread and
 STEADY_READ_GAP_S = 0.05  # socket live only as long as the call, and a sample must not catch one in passing)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 import sys
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 WORKSPACE = os.path.join(REPO, "catkin_ws")
 # Set in the environment of the run inside, so that a workspace that still cannot be imported is an error, not a loop.
 MARK = "TSO_WORKSPACE_ENV"

@@ -12,11 +12,11 @@ import time
 import traceback
 from typing import Any, Deque, Dict, List, Optional, Tuple
 
-from process_stats import process_alive
-from ros_master import node_pid
-from ros_processes import ToolError
+from ros_run.process_stats import process_alive
+from ros_run.master import node_pid
+from ros_run.processes import ToolError
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 MODELS = os.path.join(REPO, "catkin_ws", "src", "turtle_sim_ode", "test", "models")
 SIMULATOR_NODE = "/gazebo"
 ROBOT = "mobile_base"

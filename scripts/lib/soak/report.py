@@ -6,7 +6,7 @@ import argparse
 import math
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
-from soak_node import Stats
+from soak.node import Stats
 
 # A healthy run grows 0.05-0.2 MiB/min after the warm-up (60 s and 3 min runs, 2 spawns/s). 2 MiB/min is ten times
 # that and more than one allocator step (1 MiB) in the 48 s window of the 60 s soak, and it still catches a leak of

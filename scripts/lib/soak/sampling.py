@@ -8,10 +8,10 @@ import os
 import time
 from typing import Any, Dict
 
-from process_stats import cpu_seconds, process_alive, rss_bytes, steady_counts
-from ros_master import Master
-from ros_processes import SHUTDOWN_TIMEOUT_S, Processes, ToolError
-from soak_node import CALL_TIMEOUT_S, STARTUP_TIMEOUT_S, SoakError, SoakNode
+from ros_run.process_stats import cpu_seconds, process_alive, rss_bytes, steady_counts
+from ros_run.master import Master
+from ros_run.processes import SHUTDOWN_TIMEOUT_S, Processes, ToolError
+from soak.node import CALL_TIMEOUT_S, STARTUP_TIMEOUT_S, SoakError, SoakNode
 
 CALLER_ID = "/soak"  # towards the master, before the soak's node exists
 MIB = 1024.0 * 1024.0
