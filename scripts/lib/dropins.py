@@ -10,8 +10,11 @@ of the same name exists:
   - in the user's own workspace: another package folder of that name under the workspace's src;
   - in an underlay workspace: a package folder below a ROS_PACKAGE_PATH entry outside the workspace, or below the
     source space a devel-space prefix on CMAKE_PREFIX_PATH names in its .catkin file.
-A copy of a drop-in (installed, or in another workspace) is never the real package. Where no real package exists,
-a CATKIN_IGNORE written here is removed again (one a person wrote is left alone).
+A copy of a drop-in (installed, or in another workspace) is never the real package. Neither is an installed or
+underlay package older than the version its drop-in names as the first working one (<dropin fixed_in="1.15.2"/>:
+Debian's joint_state_publisher_gui 1.15.1 crashes): the drop-in is used ahead of it, as the workspace comes first
+on ROS_PACKAGE_PATH, CMAKE_PREFIX_PATH and PYTHONPATH. Where no real package exists, a CATKIN_IGNORE written here
+is removed again (one a person wrote is left alone).
 
   dropins.py apply [--src DIR] [--devel DIR] [--prefix P ...] [--underlay DIR ...]
       write or remove the CATKIN_IGNORE files (and, for an ignored drop-in, its leftovers in the devel space);
@@ -108,9 +111,26 @@ def system_prefixes(workspace):
     return kept
 
 
-def is_dropin(manifest):
+def dropin_element(manifest):
     export = ET.parse(manifest).find("export")
-    return export is not None and export.find("dropin") is not None
+    return export.find("dropin") if export is not None else None
+
+
+def is_dropin(manifest):
+    return dropin_element(manifest) is not None
+
+
+def version_tuple(text):
+    """(1, 15, 2) for "1.15.2"; the parts that are not numbers count as 0."""
+    return tuple(int(part) if part.isdigit() else 0 for part in text.strip().split("."))
+
+
+def broken_version(manifest, fixed_in):
+    """The version of the package at manifest when it is older than fixed_in (its drop-in's first working one)."""
+    if not fixed_in:
+        return None
+    version = (ET.parse(manifest).findtext("version") or "0").strip()
+    return version if version_tuple(version) < version_tuple(fixed_in) else None
 
 
 def system_package(name, prefixes):
@@ -140,22 +160,32 @@ def underlay_packages(sources):
 
 
 def decide(src_dir, prefixes, underlays=()):
-    """[(name, folder, the real package's folder or None)] for every drop-in: the user's own package of that name
-    in src_dir first, then an installed one, then one in an underlay."""
+    """[(name, folder, the real package's folder or None, [(broken package's folder, its version)])] for every
+    drop-in: the user's own package of that name in src_dir first, then an installed one, then one in an underlay;
+    installed and underlay ones older than the drop-in's fixed_in do not count (the drop-in is used ahead of them)."""
     own = workspace_packages(src_dir)
     elsewhere = underlay_packages(underlays)
     decisions = []
     for name, folder in sorted(find_dropins(src_dir).items()):
+        fixed_in = dropin_element(os.path.join(folder, "package.xml")).get("fixed_in")
         manifest = system_package(name, prefixes)
-        real = own.get(name) or (os.path.dirname(manifest) if manifest else None) or elsewhere.get(name)
-        decisions.append((name, folder, real))
+        real, broken = own.get(name), []
+        for candidate in (os.path.dirname(manifest) if manifest else None, elsewhere.get(name)):
+            if real or not candidate:
+                continue
+            version = broken_version(os.path.join(candidate, "package.xml"), fixed_in)
+            if version:
+                broken.append((candidate, version))
+            else:
+                real = candidate
+        decisions.append((name, folder, real, broken))
     return decisions
 
 
 def apply(src_dir, prefixes, devel_dir=None, log=sys.stderr, underlays=()):
     """Write/remove the CATKIN_IGNORE files; return the folders of the drop-ins in use."""
     in_use = []
-    for name, folder, real in decide(src_dir, prefixes, underlays):
+    for name, folder, real, broken in decide(src_dir, prefixes, underlays):
         ignore = os.path.join(folder, "CATKIN_IGNORE")
         if real:
             if not os.path.exists(ignore):
@@ -171,7 +201,13 @@ def apply(src_dir, prefixes, devel_dir=None, log=sys.stderr, underlays=()):
         if os.path.exists(ignore):
             log.write("dropins: %s: %s has a CATKIN_IGNORE of its own: left alone\n" % (name, folder))
             continue
-        log.write("dropins: %s: no real package found, the workspace's drop-in is used\n" % name)
+        for shadowed, version in broken:
+            log.write(
+                "dropins: %s: %s is version %s, which does not work: the workspace's drop-in is found ahead of it\n"
+                % (name, shadowed, version)
+            )
+        if not broken:
+            log.write("dropins: %s: no real package found, the workspace's drop-in is used\n" % name)
         in_use.append(folder)
     return in_use
 
@@ -209,7 +245,7 @@ def main(argv=None):
         return 0
     if not args.target:
         parser.error("pypi-missing needs --target")
-    for name, folder, real in decide(args.src, prefixes, underlays):
+    for name, folder, real, _ in decide(args.src, prefixes, underlays):
         requirements = os.path.join(folder, "pypi-requirements.txt")
         if not real and os.path.isfile(requirements) and unsatisfied_requirements(requirements, args.target):
             print(requirements)

@@ -227,9 +227,16 @@ def test_resolver_installs_the_real_xacro_where_the_platform_has_it(platform):
     assert not any("gazebo-ros" in p for p in packages)
 
 
-# Packages Debian 12 lacks and the ROS apt repository has (ros-noetic-*): ros_control's, and geographic_info's
-# messages for hector's GPS service.
-RELEASED_DROPINS = ("control_msgs", "controller_manager", "controller_manager_msgs", "geographic_msgs", "uuid_msgs")
+# Packages Debian 12 lacks and the ROS apt repository has (ros-noetic-*): ros_control's, geographic_info's
+# messages for hector's GPS service, robot_localization (the SMB course's EKF).
+RELEASED_DROPINS = (
+    "control_msgs",
+    "controller_manager",
+    "controller_manager_msgs",
+    "geographic_msgs",
+    "robot_localization",
+    "uuid_msgs",
+)
 
 
 def test_the_packages_debian_lacks_are_dropins(tmp_path):
@@ -241,7 +248,8 @@ def test_the_packages_debian_lacks_are_dropins(tmp_path):
     assert sorted(apply(tmp_path).stdout.split()) == [str(src / name) for name in RELEASED_DROPINS]
     install_system_package(tmp_path, "control_msgs")
     install_system_package(tmp_path, "uuid_msgs")
-    expected = [str(src / name) for name in ("controller_manager", "controller_manager_msgs", "geographic_msgs")]
+    kept = ("controller_manager", "controller_manager_msgs", "geographic_msgs", "robot_localization")
+    expected = [str(src / name) for name in kept]
     assert apply(tmp_path).stdout.split() == expected
 
 
@@ -251,3 +259,80 @@ def test_resolver_installs_the_real_packages_where_the_platform_has_them(platfor
     for name in RELEASED_DROPINS:
         real = "ros-noetic-" + name.replace("_", "-")
         assert (real in packages) == (platform == "ubuntu")
+
+
+# Drop-ins of packages the courses start that Debian 12 lacks; Ubuntu's ros-noetic-* ones win where installed.
+COURSE_DROPINS = ("joint_state_publisher_gui", "rqt_robot_steering", "teleop_twist_keyboard", "twist_mux")
+
+
+@pytest.mark.parametrize("platform", ["debian", "ubuntu"])
+def test_course_dropins_resolve_to_the_released_packages_on_ubuntu(platform):
+    table = {}
+    with open(os.path.join(REPO, "scripts", "lib", "rosdeps.tsv")) as rows:
+        for line in rows:
+            if line.strip() and not line.startswith("#"):
+                key, debian, ubuntu = line.rstrip("\n").split("\t")
+                table[key] = debian.split() if platform == "debian" or ubuntu == "=" else ubuntu
+    for name in COURSE_DROPINS:
+        real = "ros-noetic-" + name.replace("_", "-")
+        if platform == "ubuntu":
+            assert table[name] == "-", name  # the ROS apt naming rule
+        else:
+            assert real not in table[name] and name.replace("_", "-") not in table[name], name
+
+
+JSP_GUI = "joint_state_publisher_gui"
+
+
+def versioned(version):
+    """MANIFEST at another version (its %s: the name)."""
+    return MANIFEST.replace("1.14.0", version)
+
+
+def test_an_installed_joint_state_publisher_gui_older_than_1_15_2_does_not_count(tmp_path):
+    """Debian's joint_state_publisher_gui 1.15.1 crashes (QSlider.setValue with a float): the drop-in is built and
+    found first, and says so; a 1.15.2 (Ubuntu's) or a copy in the user's workspace makes it stand aside."""
+    src = tmp_path / "ws" / "src"
+    dropin = src / JSP_GUI
+    shutil.copytree(os.path.join(SRC, JSP_GUI), str(dropin), ignore=shutil.ignore_patterns("test"))
+    system = add_package(tmp_path / "system" / "share" / "joint_state_publisher_gui", JSP_GUI, versioned("1.15.1"))
+    result = apply(tmp_path)
+    assert result.stdout.split() == [str(dropin)]
+    said = "joint_state_publisher_gui: %s is version 1.15.1, which does not work" % system
+    assert result.stderr.count(said) == 1
+    package_path = "%s:%s" % (src, tmp_path / "system" / "share")
+    assert rospkg.RosPack(ros_paths=package_path.split(":")).get_path("joint_state_publisher_gui") == str(dropin)
+
+    (system / "package.xml").write_text(versioned("1.15.2") % JSP_GUI)
+    result = apply(tmp_path)
+    assert result.stdout.split() == []
+    assert "the real %s is used" % system in result.stderr
+    assert rospkg.RosPack(ros_paths=package_path.split(":")).get_path("joint_state_publisher_gui") == str(system)
+
+    (system / "package.xml").write_text(versioned("1.15.1") % JSP_GUI)
+    users = add_package(src / "joint_state_publisher" / JSP_GUI, JSP_GUI, versioned("1.15.1"))
+    result = apply(tmp_path)
+    assert result.stdout.split() == [] and "the real %s is used" % users in result.stderr
+
+
+def test_a_broken_underlay_copy_does_not_count_either(tmp_path):
+    src = tmp_path / "ws" / "src"
+    dropin = src / JSP_GUI
+    shutil.copytree(os.path.join(SRC, JSP_GUI), str(dropin), ignore=shutil.ignore_patterns("test"))
+    (tmp_path / "system" / "share").mkdir(parents=True)
+    underlay = add_package(tmp_path / "underlay" / "src" / "jsp" / JSP_GUI, JSP_GUI, versioned("1.12.13"))
+    assert apply(tmp_path, "--underlay", str(tmp_path / "underlay" / "src")).stdout.split() == [str(dropin)]
+    (underlay / "package.xml").write_text(versioned("1.16.0") % JSP_GUI)
+    assert apply(tmp_path, "--underlay", str(tmp_path / "underlay" / "src")).stdout.split() == []
+
+
+@pytest.mark.parametrize("platform", ["debian", "ubuntu"])
+def test_install_deps_brings_what_urdf_tutorials_display_launch_starts(platform):
+    """urdf_tutorial's display.launch starts joint_state_publisher(_gui), robot_state_publisher and rviz."""
+    packages = resolved_packages(platform)
+    if platform == "debian":
+        expected = ["joint-state-publisher", "ros-robot-state-publisher", "rviz"]
+        assert "joint-state-publisher-gui" not in packages  # Debian's 1.15.1 crashes: the drop-in is used
+    else:
+        expected = ["ros-noetic-joint-state-publisher", "ros-noetic-robot-state-publisher", "ros-noetic-rviz"]
+    assert set(expected) <= set(packages), sorted(set(expected) - set(packages))

@@ -1,7 +1,7 @@
 """Fakes for the ros_control core's tests: joints that are point inertias, and a hardware built over them."""
 from __future__ import annotations
 
-from typing import Dict, List, Tuple
+from typing import Dict, List, Optional, Tuple
 
 from conftest import PACKAGE_ROOT
 
@@ -76,9 +76,9 @@ class Rig:
         assert self.manager.switch([name], [], 2), self.log
 
 
-def simulated(urdf: str, name: str, z: float, controllers: dict):
+def simulated(urdf: str, name: str, z: float, controllers: dict, robot_params: Optional[dict] = None):
     """A Simulation with the model spawned at height z and its ros_control stepped before every physics step, the
-    controllers loaded and started: (simulation, RosControl)."""
+    controllers loaded and started, ``robot_params`` the robot namespace's parameters: (simulation, RosControl)."""
     from turtle_sim_ode.control.ode_joint import OdeSimJoint
     from turtle_sim_ode.control.plugin import RosControl, RosControlConfig
     from turtle_sim_ode.world.simulation import Simulation
@@ -88,7 +88,7 @@ def simulated(urdf: str, name: str, z: float, controllers: dict):
     model = sim.models[name]
     config = RosControlConfig.read({}, name, sim.physics.time_step)
     joints = {joint: OdeSimJoint(model.joint(joint)) for joint in model.joints}
-    control = RosControl(config, model.robot, joints, {}, lambda level, text: None)
+    control = RosControl(config, model.robot, joints, robot_params or {}, lambda level, text: None)
     for controller, params in controllers.items():
         assert control.manager.load(controller, params)
     assert control.manager.switch(list(controllers), [], 2)

@@ -42,7 +42,7 @@ def _read(filename: str, tags: Dict[str, str]):
 def test_f3d_tags_and_defaults() -> None:
     with pytest.raises(ModelError, match="needs <bodyName> and <topicName>"):
         _read(F3D, {"bodyName": "link"})
-    assert _read(F3D, {"bodyName": "link", "topicName": "force"}) == F3dConfig("link", "force", "world", "")
+    assert _read(F3D, {"bodyName": "link", "topicName": "force"}) == F3dConfig("link", "force", "world", None)
     given_ = _read(F3D, {"bodyName": "l", "topicName": "t", "frameName": "map", "robotNamespace": "r"})
     assert (given_.frame, given_.robot_namespace) == ("map", "r")
 
@@ -50,7 +50,7 @@ def test_f3d_tags_and_defaults() -> None:
 def test_ft_sensor_tags_and_defaults() -> None:
     with pytest.raises(ModelError, match="needs <jointName> and <topicName>"):
         _read(FT_SENSOR, {"jointName": "j"})
-    assert _read(FT_SENSOR, {"jointName": "j", "topicName": "ft"}) == FtSensorConfig("j", "ft", 0.0, 0.0, "")
+    assert _read(FT_SENSOR, {"jointName": "j", "topicName": "ft"}) == FtSensorConfig("j", "ft", 0.0, 0.0, None)
     for tag, value in (("updateRate", "-1"), ("updateRate", "fast"), ("gaussianNoise", "nan")):
         with pytest.raises(ModelError, match=tag):
             _read(FT_SENSOR, {"jointName": "j", "topicName": "ft", tag: value})

@@ -3,15 +3,21 @@ reads, the README's tables name each, and a plugin not known is named in the one
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Optional
 
+import hypothesis.strategies as st
 import pytest
+from hypothesis import given, settings
 from conftest import PACKAGE_ROOT
 
+from turtle_sim_ode.control.plugin import RosControlConfig
+from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.ros.plugins import ADAPTERS, GROUPED, plugin_namespace
 from turtle_sim_ode.sensors.config import read_sdf_sensors
 from turtle_sim_ode.sensors.plugins import SENSOR_PLUGINS
 from turtle_sim_ode.world.plugins import MODEL_PLUGINS, P3D, read_plugins
+from turtle_sim_ode.world.plugins.ros_control import ROS_CONTROL
 from turtle_sim_ode.world.simulation import Simulation
 
 README = (Path(PACKAGE_ROOT) / "README.md").read_text()
@@ -69,10 +75,58 @@ def test_a_triggered_camera_reads_its_trigger_topic() -> None:
 
 @pytest.mark.parametrize(
     "own, spawn, expected",
-    [("own_ns", "spawned_ns", "own_ns"), ("/", "spawned_ns", "/"), ("", "spawned_ns", "spawned_ns"), ("", "", "")],
+    [
+        ("own_ns", "spawned_ns", "own_ns"),
+        ("/", "spawned_ns", "/"),
+        ("", "spawned_ns", ""),
+        (None, "spawned_ns", "spawned_ns"),
+        (None, "", ""),
+    ],
 )
-def test_a_plugins_own_robot_namespace_wins(own: str, spawn: str, expected: str) -> None:
+def test_a_plugins_own_robot_namespace_wins(own: Optional[str], spawn: str, expected: str) -> None:
     """gazebo_ros_api_plugin.cpp, walkChildAddRobotNamespace: the spawn's robot_namespace goes only to a <plugin>
-    without a <robotNamespace> child."""
-    (config,) = read_plugins("m", [GazeboPlugin(P3D, "p", {"bodyName": "b", "robotNamespace": own})], {}, []).configs
+    without a <robotNamespace> child; an empty child is the root namespace, as each plugin's Load reads
+    _sdf->GetElement("robotNamespace")->Get<std::string>() whenever HasElement (issue #31: the SMB's plugins)."""
+    tags = {"bodyName": "b"} if own is None else {"bodyName": "b", "robotNamespace": own}
+    (config,) = read_plugins("m", [GazeboPlugin(P3D, "p", tags)], {}, []).configs
     assert plugin_namespace(spawn, config) == expected
+
+
+@given(
+    own=st.one_of(st.none(), st.from_regex(r"\A/?([a-z][a-z0-9_]{0,6}/?){0,3}\Z")),
+    spawn=st.from_regex(r"\A/?([a-z][a-z0-9_]{0,6})?\Z"),
+    filename=st.sampled_from(sorted(f for f in MODEL_PLUGINS if f != ROS_CONTROL)),
+)
+@settings(max_examples=60, deadline=None)
+def test_every_model_plugin_takes_its_element_else_the_spawns(own: Optional[str], spawn: str, filename: str) -> None:
+    """Each plugin's Load takes <robotNamespace> whenever the element exists, empty or not; without it the spawn's
+    robot_namespace (walkChildAddRobotNamespace). Plugins that need more tags than given are skipped."""
+    tags = {name: "base" for name in ("bodyName", "frameName", "jointName", "topicName")}
+    if own is not None:
+        tags["robotNamespace"] = own
+    try:
+        configs = read_plugins("m", [GazeboPlugin(filename, "p", tags)], {}, []).configs
+    except ModelError:
+        return
+    for config in configs:
+        assert plugin_namespace(spawn, config) == (spawn if own is None else own.strip())
+
+
+@pytest.mark.parametrize(
+    "element, expected",
+    [("", ""), ("<robotNamespace></robotNamespace>", ""), ("<robotNamespace>r</robotNamespace>", "r")],
+)
+def test_a_sensor_plugins_empty_robot_namespace_is_the_root(element: str, expected: str) -> None:
+    """gazebo_ros_block_laser.cpp / gazebo_ros_imu_sensor.cpp Load: the element's value where it exists."""
+    sdf = RAY_SDF.format(name="lidar", filename="libgazebo_ros_laser.so").replace(
+        "<topicName>", element + "<topicName>"
+    )
+    (laser,) = read_sdf_sensors(sdf).lasers
+    assert plugin_namespace("spawned", laser) == (expected if element else "spawned")
+
+
+def test_ros_control_takes_an_empty_robot_namespace_as_the_root() -> None:
+    """gazebo_ros_control_plugin.cpp GazeboRosControlPlugin::Load: robot_namespace_ = the element's value when
+    sdf_->HasElement("robotNamespace"), else parent_model_->GetName() (the SMB's URDF gives it empty)."""
+    assert RosControlConfig.read({"robotNamespace": ""}, "smb", 0.001).robot_namespace == ""
+    assert RosControlConfig.read({}, "smb", 0.001).robot_namespace == "smb"

@@ -75,13 +75,14 @@ def below(distance: float) -> Vec3:
 
 # --- tags -------------------------------------------------------------------------------------------------------
 def test_body_and_topic_are_required_and_namespace_defaults_to_none() -> None:
-    """GazeboRosVacuumGripper::Load: no <bodyName> or no <topicName> stops loading; <robotNamespace> default ""."""
+    """GazeboRosVacuumGripper::Load: no <bodyName> or no <topicName> stops loading; without <robotNamespace>, the spawn's
+    (gazebo_ros_api_plugin.cpp walkChildAddRobotNamespace gives it one): None here."""
     with pytest.raises(ModelError, match="needs <bodyName>"):
         read_plugins("m", [plugin(topicName="grasping")], {}, [])
     with pytest.raises(ModelError, match="needs <topicName>"):
         read_plugins("m", [plugin(bodyName="tip")], {}, [])
     (config,) = read_plugins("m", [plugin(bodyName="tip", topicName="grasping")], {}, []).configs
-    assert config == VacuumGripperConfig("tip", "grasping", "")
+    assert config == VacuumGripperConfig("tip", "grasping", None)
     tags = plugin(bodyName=" m::tip ", topicName="/left/grasping", robotNamespace="/robot/left_vacuum_gripper")
     (config,) = read_plugins("m", [tags], {}, []).configs
     assert config == VacuumGripperConfig("m::tip", "/left/grasping", "/robot/left_vacuum_gripper")
@@ -339,7 +340,7 @@ def test_generated_tags_read_or_are_refused(body, topic, namespace) -> None:  # 
         assert not (body or "").strip() or not (topic or "").strip()
         return
     assert config.body == body.strip() and config.topic == topic.strip()
-    assert config.robot_namespace == (namespace or "").strip()
+    assert config.robot_namespace == (None if namespace is None else namespace.strip())
 
 
 def test_quat_helper_agrees_with_the_spawn_yaw() -> None:

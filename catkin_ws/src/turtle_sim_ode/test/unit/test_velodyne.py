@@ -60,7 +60,7 @@ def test_tags_and_defaults() -> None:
     # Load's defaults: /points, frame /world, min_range 0, max_range infinity, no noise; no robotNamespace: the
     # spawn's (gazebo_ros adds it to a plugin without one; Load's own default "/" is the same root).
     assert (config.topic, config.frame, config.min_range, config.max_range) == ("/points", "/world", 0.0, math.inf)
-    assert (config.gaussian_noise, config.robot_namespace) == (0.0, "")
+    assert (config.gaussian_noise, config.robot_namespace) == (0.0, None)
 
 
 def test_the_gpu_plugin_needs_a_gpu_ray_sensor() -> None:

@@ -4,21 +4,24 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, Mapping, Optional
+from typing import Callable, List, Mapping, Optional
 
 from turtle_sim_ode.control.hardware import DefaultRobotHWSim, SimJoint
 from turtle_sim_ode.control.manager import ControllerManager
-from turtle_sim_ode.control.transmissions import read_transmissions
+from turtle_sim_ode.control.transmissions import VELOCITY, read_transmissions
 from turtle_sim_ode.models.urdf import RobotModel
 
 ROBOT_SIM_TYPES = ("gazebo_ros_control/DefaultRobotHWSim",)
 # Timestamps within this of the control period count as a full period (sim time is a sum of float steps).
 TIME_EPSILON = 1e-9
+# DefaultRobotHWSim::writeSim applies a VELOCITY_PID's effort explicitly, from the velocity read before the step: on a
+# joint that moves only its own inertia I (a slipping wheel) the loop diverges once p * step / I reaches 2.
+EXPLICIT_LOOP_LIMIT = 2.0
 
 
 @dataclass(frozen=True)
 class RosControlConfig:
-    """robotNamespace (default: the model's name), robotParam (robot_description), robotSimType, controlPeriod
+    """robotNamespace (default: the model's name; empty: the root), robotParam (robot_description), robotSimType, controlPeriod
     (default and minimum: the physics step), legacyModeNS (read, no effect in Noetic), eStopTopic."""
 
     robot_namespace: str
@@ -52,7 +55,8 @@ class RosControlConfig:
                     f"Desired controller update period ({period} s) is slower than the gazebo simulation period "
                     f"({physics_step} s)."
                 )
-        namespace = params.get("robotNamespace", model_name).strip() or model_name
+        # GazeboRosControlPlugin::Load: the element's value whenever it exists (empty: the root), else the model's name
+        namespace = params.get("robotNamespace", model_name).strip()
         return cls(
             robot_namespace=namespace,
             robot_param=params.get("robotParam", "robot_description").strip(),
@@ -61,6 +65,20 @@ class RosControlConfig:
             e_stop_topic=params.get("eStopTopic", "").strip(),
             warnings=tuple(warnings),
         )
+
+
+def unstable_velocity_pids(hw: DefaultRobotHWSim, inertias: Mapping[str, float], time_step: float) -> List[str]:
+    """A warning for each VELOCITY_PID joint whose p gain the explicit loop cannot hold on the joint's own inertia."""
+    warnings = []
+    for name, pid in hw.pids.items():
+        ratio = pid.gains.p * time_step / inertias.get(name, math.inf)
+        if hw.joints[name].interface == VELOCITY and ratio >= EXPLICIT_LOOP_LIMIT:
+            warnings.append(
+                f"joint '{name}': pid_gains p {pid.gains.p:g} at {time_step:g} s steps on its {inertias[name]:.3g} kg m^2 "
+                f"(p dt / I = {ratio:.2f} >= {EXPLICIT_LOOP_LIMIT:g}): once it slips its velocity loop chatters between "
+                "the effort limits (DefaultRobotHWSim's explicit PID; a skid steer then hardly drives or steers)"
+            )
+    return warnings
 
 
 class RosControl:

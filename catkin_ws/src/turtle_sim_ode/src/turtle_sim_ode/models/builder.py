@@ -164,6 +164,7 @@ class BuiltModel:
         self.joints = joints
         self.bodies = bodies
         self.warnings: List[str] = []  # what building changed to keep the model sane, for the spawn's answer
+        self.welds: List[ode.FixedJoint] = []  # joints from a URDF link named "world": to the world
         self._physics = physics
         self._space: Optional[ode.SpaceBase] = space
         continuous = [j for j in joints.values() if j.type == "continuous"]
@@ -333,8 +334,8 @@ class BuiltModel:
             _remove_static_geoms(self._physics, self._space, self.geoms)
         else:
             self._physics.destroy_model_space(self._space)
-        for handle in self.joints.values():
-            handle.joint.attach(None, None)
+        for joint in [handle.joint for handle in self.joints.values()] + self.welds:
+            joint.attach(None, None)
         for body in self.bodies:
             self._physics.forget_body(body)
             body.disable()
@@ -499,11 +500,11 @@ def build_model(
     child_joints: Dict[str, List[Joint]] = {}
     for joint in robot.joints.values():
         child_joints.setdefault(joint.parent, []).append(joint)
-    order = [robot.root]
+    order, world = [robot.root], (WORLD_LINK if robot.root == WORLD_LINK else None)
     for link in order:  # breadth-first; ``order`` grows while iterating
         for joint in child_joints.get(link, []):
             world_of[joint.child] = compose(world_of[link], pose_transform(joint.origin))
-            owner[joint.child] = owner[link] if joint.type == "fixed" else joint.child
+            owner[joint.child] = owner[link] if joint.type == "fixed" and link != world else joint.child
             members_of.setdefault(owner[joint.child], []).append(joint.child)
             order.append(joint.child)
     if robot.static:
@@ -512,6 +513,9 @@ def build_model(
     space = physics.create_model_space(self_collide)
     bodies: Dict[str, ode.Body] = {}
     links: Dict[str, LinkFrame] = {}
+    if members_of.pop(world, None):  # the world frame itself, where the model was placed: no body
+        links[WORLD_LINK] = LinkFrame(None, world_of[WORLD_LINK])
+    welds: List[ode.FixedJoint] = []
     geoms: Dict[str, List[ode.GeomObject]] = {}
     try:
         for body_link, members in members_of.items():
@@ -531,18 +535,8 @@ def build_model(
             mass, com, inertia = _inertia_about_com(parts)
             body = ode.Body(physics.world)
             ode_mass = ode.Mass()
-            ode_mass.setParameters(
-                mass,
-                0.0,
-                0.0,
-                0.0,
-                inertia[0][0],
-                inertia[1][1],
-                inertia[2][2],
-                inertia[0][1],
-                inertia[0][2],
-                inertia[1][2],
-            )
+            i = inertia
+            ode_mass.setParameters(mass, 0.0, 0.0, 0.0, i[0][0], i[1][1], i[2][2], i[0][1], i[0][2], i[1][2])
             body.setMass(ode_mass)
             body_pose = compose(world_of[body_link], (com, (1.0, 0.0, 0.0, 0.0)))
             body.setPosition(body_pose[0])
@@ -567,10 +561,17 @@ def build_model(
         damping: List[Tuple[JointHandle, float]] = []
         stop_warnings: List[str] = []
         for joint in robot.joints.values():
-            if joint.type in ("fixed", "floating"):
+            if joint.type == "floating" or (joint.type == "fixed" and owner[joint.child] != joint.child):
                 continue
+            # None: the world (SDF's <parent>world</parent>, or a URDF root link named world, as sdformat's
+            # URDF to SDF conversion makes it: no link, its joints joints to the world).
             child = bodies[joint.child]
-            parent = None if joint.parent == WORLD_LINK else bodies[owner[joint.parent]]  # None: ODE's world
+            parent = None if joint.parent == WORLD_LINK else bodies.get(owner[joint.parent])
+            if joint.type == "fixed":  # from the world link: welded where it was placed
+                welds.append(ode.FixedJoint(physics.world))
+                welds[-1].attach(child, None)
+                welds[-1].setFixed()
+                continue
             anchor, rotation = compose(world_of[joint.child], pose_transform(joint.frame))
             axis = quat_rotate(rotation, joint.axis)
             if joint.type == "prismatic":
@@ -609,6 +610,7 @@ def build_model(
             body.disable()
         raise
     model = BuiltModel(physics, robot, space, list(bodies.values()), links, geoms, joints, damping)
+    model.welds = welds
     model.warnings = stop_warnings + _keep_sane(model, bodies, physics.time_step)
     return model
 

@@ -3,7 +3,7 @@ that every parser, sensor and plugin reader uses, so that a bad number gets the 
 from __future__ import annotations
 
 import math
-from typing import Dict, Optional
+from typing import Dict, Mapping, Optional
 from xml.etree.ElementTree import Element, ParseError
 
 import defusedxml
@@ -58,6 +58,15 @@ def plugin_params(plugin: Element) -> Dict[str, str]:
     for child in plugin:
         params.setdefault(child.tag, (child.text or "").strip())
     return params
+
+
+def robot_namespace_tag(params: Mapping[str, str]) -> Optional[str]:
+    """A plugin's <robotNamespace> (from plugin_params): its text wherever the element exists, "" (the root namespace)
+    included, as every gazebo_ros plugin's Load reads it when sdf HasElement("robotNamespace"); None without the
+    element, so the spawn's robot_namespace applies (GazeboRosApiPlugin::walkChildAddRobotNamespace adds it only
+    to plugins without one)."""
+    given = params.get("robotNamespace")
+    return None if given is None else given.strip()
 
 
 def read_optional_number(text: Optional[str], what: str, minimum: float = -math.inf) -> Optional[float]:

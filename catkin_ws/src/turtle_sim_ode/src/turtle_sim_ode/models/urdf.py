@@ -45,7 +45,8 @@ MAX_LINKS = 1000
 MAX_JOINTS = 1000
 MAX_COLLISIONS = 1000
 MAX_VISUALS = 1000  # each is drawn by every camera, every frame
-# The parent link name of a joint that holds a model's root link to the world (SDF's <parent>world</parent>).
+# The parent link name of a joint that holds a model's root link to the world (SDF's <parent>world</parent>), and
+# a URDF root link of that name: the world frame (a fixed joint from it welds the robot where it was placed).
 WORLD_LINK = "world"
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
 # <gazebo reference="link"> contact tags -> GazeboSurface fields (Gazebo's ODE surface of the link's collisions).

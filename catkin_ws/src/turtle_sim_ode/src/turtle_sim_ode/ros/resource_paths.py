@@ -5,9 +5,11 @@ packages that depend on it, this reads them from every package)."""
 from __future__ import annotations
 
 import os
-from typing import List, Mapping, Optional
+from typing import Callable, List, Mapping, Optional
 
 import rospkg
+import rospy
+from catkin_pkg.package import InvalidPackage
 
 from turtle_sim_ode.models.resources import ResourcePaths
 
@@ -19,7 +21,12 @@ def _split(value: Optional[str]) -> List[str]:
     return [entry for entry in (value or "").split(os.pathsep) if entry]
 
 
-def resource_paths(environ: Mapping[str, str] = os.environ) -> ResourcePaths:
+def resource_paths(
+    environ: Mapping[str, str] = os.environ, warn: Callable[[str], None] = rospy.logwarn
+) -> ResourcePaths:
+    """The packages on the package path and the model paths; a package whose manifest cannot be read (catkin_pkg
+    refuses its package.xml, a broken manifest.xml) is skipped with one warning naming it, as the simulator still
+    runs without it."""
     roots = _split(environ.get("ROS_PACKAGE_PATH"))
     rospack = rospkg.RosPack(roots)
     packages = {}
@@ -28,7 +35,10 @@ def resource_paths(environ: Mapping[str, str] = os.environ) -> ResourcePaths:
         try:
             folder = rospack.get_path(name)
             exports = rospack.get_manifest(name).exports
-        except (rospkg.ResourceNotFound, rospkg.InvalidManifest):  # a broken package: skip it
+        except rospkg.ResourceNotFound:  # gone since the listing
+            continue
+        except (rospkg.InvalidManifest, InvalidPackage) as error:
+            warn(f"Package '{name}' skipped: its manifest is not valid ({' '.join(str(error).split())})")
             continue
         packages[name] = folder
         for export in exports:

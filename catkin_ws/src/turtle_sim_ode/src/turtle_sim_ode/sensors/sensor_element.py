@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Callable, Dict, NamedTuple, Optional, Sequence, Tuple, Type, TypeVar
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
+from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number, robot_namespace_tag
 from turtle_sim_ode.physics import sanity
 
 
@@ -169,5 +169,5 @@ def gazebo_ray_tags(params: Dict[str, str], plugin_what: str, topic: str) -> Dic
         "topic": params.get("topicName") or topic,
         "frame": params.get("frameName") or "/world",
         "gaussian_noise": read_number(params.get("gaussianNoise"), f"{plugin_what} <gaussianNoise>", 0.0, 0.0),
-        "robot_namespace": params.get("robotNamespace") or "",
+        "robot_namespace": robot_namespace_tag(params),
     }

@@ -92,10 +92,11 @@ GROUPED: Dict[type, Callable[[List[ModelContext], List[object]], List[Periodic]]
 
 
 def plugin_namespace(spawn_namespace: str, config: object) -> str:
-    """A plugin's robot namespace: its own <robotNamespace> where it has one, else the spawn request's
-    robot_namespace, as gazebo_ros's GazeboRosApiPlugin::walkChildAddRobotNamespace adds that only to plugins
-    without one (an empty tag counts as none here)."""
-    return getattr(config, "robot_namespace", "") or spawn_namespace
+    """A plugin's robot namespace: its own <robotNamespace> wherever the element exists (empty: the root), else the
+    spawn request's robot_namespace, as gazebo_ros's GazeboRosApiPlugin::walkChildAddRobotNamespace adds that only
+    to plugins without the element."""
+    own = getattr(config, "robot_namespace", None)
+    return spawn_namespace if own is None else own
 
 
 def model_interfaces(

@@ -9,6 +9,7 @@ from __future__ import annotations
 import threading
 from typing import Any, Dict, List, Tuple
 
+import rosgraph
 import rospy
 from controller_manager_msgs.msg import ControllerState, HardwareInterfaceResources
 from controller_manager_msgs.srv import (
@@ -28,7 +29,7 @@ from controller_manager_msgs.srv import (
 from std_msgs.msg import Bool
 
 from turtle_sim_ode.control.ode_joint import OdeSimJoint
-from turtle_sim_ode.control.plugin import RosControl, RosControlConfig
+from turtle_sim_ode.control.plugin import RosControl, RosControlConfig, unstable_velocity_pids
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, subscriber
 from turtle_sim_ode.ros.plugins.ros_control_topics import ControllerTopics
 from turtle_sim_ode.world.plugins.ros_control import RosControlPluginConfig
@@ -42,6 +43,15 @@ SERVICES = (
     ("switch_controller", SwitchController),
     ("reload_controller_libraries", ReloadControllerLibraries),
 )
+
+
+def uncached_param(key: str, default: Any) -> Any:
+    """The parameter server's value at ``key``, asked of the master: rospy.get_param answers from its cache once the
+    node caches any parameter (rosout caches one), and for "/" that cache is a part of the tree."""
+    try:
+        return rosgraph.Master(rospy.get_name()).getParam(rospy.resolve_name(key))
+    except rosgraph.MasterError:  # not set
+        return default
 
 
 def _log(level: str, text: str) -> None:
@@ -60,11 +70,14 @@ class RosControlInterface(Periodic):
             params["robotNamespace"] = context.namespace
         settings = RosControlConfig.read(params, context.name, context.sim.physics.time_step)
         self.namespace = "/" + settings.robot_namespace.strip("/")
-        robot_params = rospy.get_param(self.namespace, {})
+        robot_params = uncached_param(self.namespace, {})
         sim_joints = {name: OdeSimJoint(model.joint(name)) for name in model.joints}
         self.control = RosControl(
             settings, model.robot, sim_joints, robot_params if isinstance(robot_params, dict) else {}, _log
         )
+        inertias = {name: joint.handle.moved_inertia() for name, joint in sim_joints.items()}
+        for warning in unstable_velocity_pids(self.control.hw, inertias, context.sim.physics.time_step):
+            _log("warn", warning)
         self.lock = threading.Lock()
         self.topics: Dict[str, ControllerTopics] = {}
         base = self.namespace.rstrip("/") + "/controller_manager/"
@@ -116,7 +129,7 @@ class RosControlInterface(Periodic):
     def _load_controller(self, request: Any) -> LoadControllerResponse:
         name = request.name.strip("/")
         where = f"{self.namespace.rstrip('/')}/{name}"
-        params = rospy.get_param(where, {}) if name else {}
+        params = uncached_param(where, {}) if name else {}
         with self.lock:
             if not name or not self.control.manager.load(name, params if isinstance(params, dict) else {}, where):
                 return LoadControllerResponse(ok=False)

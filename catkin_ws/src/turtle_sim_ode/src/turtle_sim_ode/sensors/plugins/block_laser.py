@@ -4,7 +4,7 @@ defaults, and PutLaserData's points; the rays are sensors.lidar's (one ray per s
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, Dict, List, Tuple
+from typing import Callable, Dict, List, Optional, Tuple
 from xml.etree.ElementTree import Element
 
 import numpy as np
@@ -21,7 +21,7 @@ class BlockLaserConfig(RayGridConfig):
     topic: str = "/world"  # sic: Load's default
     frame: str = "/world"
     gaussian_noise: float = 0.0
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> BlockLaserConfig:

@@ -2,10 +2,10 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import List, Tuple
+from typing import List, Optional, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import child_text
+from turtle_sim_ode.models.text import child_text, plugin_params, robot_namespace_tag
 from turtle_sim_ode.sensors.sensor_element import rate_at, sensor_what
 
 BUMPER_PLUGIN = "libgazebo_ros_bumper.so"
@@ -23,7 +23,7 @@ class ContactConfig:
     topic: str = "bumper_states"
     frame: str = "world"
     update_rate: float = 0.0
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> ContactConfig:
@@ -35,5 +35,5 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Co
         topic=child_text(plugin, "bumperTopicName") or "bumper_states",
         frame=child_text(plugin, "frameName") or "world",
         update_rate=rate_at(sensor, ("update_rate",), 0.0, what),
-        robot_namespace=child_text(plugin, "robotNamespace") or "",
+        robot_namespace=robot_namespace_tag(plugin_params(plugin)),
     )

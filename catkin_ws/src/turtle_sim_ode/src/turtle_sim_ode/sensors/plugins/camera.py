@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import List, Optional, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number
+from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, read_number, robot_namespace_tag
 from turtle_sim_ode.sensors.distortion import LensDistortion
 from turtle_sim_ode.sensors.sensor_element import int_at, number_at, rate_at, sensor_pose, sensor_what
 
@@ -67,7 +67,7 @@ class CameraConfig:
     cutoff: float = 0.4  # depth and points only within (cutoff, cutoff_max), NaN elsewhere
     cutoff_max: float = 5.0
     pose: Tuple[float, float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
     # What gazebo_ros_camera_utils puts in camera_info from the plugin's tags (the picture does not change with them):
     # focalLength, Cx, Cy where not 0 (0: ours), P[3] = -fx hackBaseline, D = distortionK1, K2, T1, T2, K3 (in that
     # order; with <autoDistortion> the lens's k1, k2, p1, p2, k3 instead).
@@ -175,7 +175,7 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ca
         cutoff=cutoff,
         cutoff_max=cutoff_max,
         pose=sensor_pose(sensor, what),
-        robot_namespace=params.get("robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(params),
         triggered=plugin.get("filename") == TRIGGERED_CAMERA,
         trigger_topic=params.get("triggerTopicName") or "image_trigger",
         info_focal_length=given_focal,

@@ -3,10 +3,10 @@ the model-plugin form is read by world.plugins.imu with the same function. The r
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import List, Mapping
+from typing import List, Mapping, Optional
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.models.text import ModelError, read_number, robot_namespace_tag
 from turtle_sim_ode.sensors.sensor_element import rate_at, sensor_what
 
 # gazebo_plugins' IMUs: the model plugin (also found inside <sensor type="imu">, as turtlebot3 has it) and the
@@ -34,7 +34,7 @@ class ImuConfig:
     frame: str = ""
     update_rate: float = 0.0
     noise: ImuNoise = field(default_factory=ImuNoise)
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def imu_config(filename: str, params: Mapping[str, str], link: str = "", sensor_rate: float = 0.0) -> ImuConfig:
@@ -52,7 +52,7 @@ def imu_config(filename: str, params: Mapping[str, str], link: str = "", sensor_
         frame=(params.get("frameName") or "").strip(),
         update_rate=read_number(params.get(rate_tag), f"{what} <{rate_tag}>", sensor_rate, minimum=0.0),
         noise=ImuNoise(noise, noise, noise),
-        robot_namespace=(params.get("robotNamespace") or "").strip(),
+        robot_namespace=robot_namespace_tag(params),
     )
 
 

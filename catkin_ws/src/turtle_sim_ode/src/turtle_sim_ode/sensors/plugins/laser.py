@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import List, Optional, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, child_text
+from turtle_sim_ode.models.text import ModelError, child_text, plugin_params, robot_namespace_tag
 from turtle_sim_ode.sensors.sensor_element import number_at, sensor_what
 
 LASER_PLUGINS = ("libgazebo_ros_laser.so", "libgazebo_ros_ray_sensor.so")
@@ -34,7 +34,7 @@ class LaserConfig:
     noise_stddev: float = 0.0
     # <sensor><pose>: (x, y, z, roll, pitch, yaw) of the sensor in the link frame.
     pose: Tuple[float, float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
     @property
     def angle_increment(self) -> float:
@@ -96,7 +96,7 @@ def laser_config(link: str, sensor: Element, plugin: Optional[Element]) -> Laser
         noise_mean=number_at(noise, "mean", 0.0, what) if gaussian else 0.0,
         noise_stddev=number_at(noise, "stddev", 0.0, what) if gaussian else 0.0,
         pose=pose,
-        robot_namespace=(child_text(plugin, "robotNamespace") or "") if plugin is not None else "",
+        robot_namespace=robot_namespace_tag(plugin_params(plugin)) if plugin is not None else None,
     )
     config.validate()
     return config

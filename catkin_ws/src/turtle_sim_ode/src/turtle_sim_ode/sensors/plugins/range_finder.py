@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, List
+from typing import Dict, List, Optional
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, read_number
@@ -24,7 +24,7 @@ class RangeConfig(RayGridConfig):
     field_of_view: float = 0.05
     gaussian_noise: float = 0.0
     plugin_rate: float = 0.0  # <updateRate>: at most this often (0: every scan)
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> RangeConfig:

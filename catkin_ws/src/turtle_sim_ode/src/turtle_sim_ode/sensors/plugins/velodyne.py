@@ -6,12 +6,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, List, Tuple
+from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.models.text import ModelError, read_number, robot_namespace_tag
 from turtle_sim_ode.sensors.sensor_element import RayGridConfig, read_ray_grid_plugin
 
 SENSOR_PLUGINS = {
@@ -41,7 +41,7 @@ class VelodyneConfig(RayGridConfig):
     min_intensity: float = -math.inf
     gaussian_noise: float = 0.0
     organize_cloud: bool = False
-    robot_namespace: str = ""  # none given: the spawn's (Load's own default "/" is the root too)
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>, the spawn's
 
 
 def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> VelodyneConfig:
@@ -63,7 +63,7 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ve
             "min_intensity": number("min_intensity", -math.inf),
             "gaussian_noise": number("gaussianNoise", 0.0, minimum=0.0),
             "organize_cloud": organize in ("true", "1"),
-            "robot_namespace": (params.get("robotNamespace") or "").strip(),
+            "robot_namespace": robot_namespace_tag(params),
         }
 
     return read_ray_grid_plugin(VelodyneConfig, link, sensor, plugin, "velodyne", MAX_RAYS, tags)

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, Mapping, Tuple
+from typing import Dict, Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, JointHandle
-from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.diff_drive import DiffDriveController, DiffDriveParams, WheelOdometry
 from turtle_sim_ode.world.plugins.tags import flag, number, text
@@ -33,7 +33,7 @@ class DriveConfig:
     publish_tf: bool
     publish_joint_states: bool
     update_rate: float  # Hz of sim time; 0 = the node's publish_rate
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
     @property
     def joints_needed(self) -> Tuple[str, ...]:
@@ -113,5 +113,5 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         publish_tf=flag(plugin, "publishTf", flag(plugin, "publishOdomTF", True)),
         publish_joint_states=flag(plugin, "publishWheelJointState", False),
         update_rate=number(plugin, "updateRate", 100.0),
-        robot_namespace=text(plugin, "robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(plugin.params),
     )

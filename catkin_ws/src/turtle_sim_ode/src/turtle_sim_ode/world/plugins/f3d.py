@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from typing import List, Mapping, Optional, Sequence, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, Matrix3, Vec3, _rotated_inertia
-from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.world.kinematics import cross
@@ -38,14 +38,14 @@ class F3dConfig:
     body: str
     topic: str
     frame: str = "world"
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> F3dConfig:
     body, topic = text(plugin, "bodyName", ""), text(plugin, "topicName", "")
     if not body or not topic:
         raise ModelError(f"{plugin.filename} needs <bodyName> and <topicName>")
-    return F3dConfig(body, topic, text(plugin, "frameName", "world"), text(plugin, "robotNamespace", ""))
+    return F3dConfig(body, topic, text(plugin, "frameName", "world"), robot_namespace_tag(plugin.params))
 
 
 def _times(m: Sequence[Sequence[float]], v: Sequence[float]) -> Vec3:

@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Mapping, Sequence, Tuple
+from typing import Mapping, Optional, Sequence, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel
-from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.world.plugins.tags import text
@@ -22,14 +22,14 @@ Vec3 = Tuple[float, float, float]
 class ForceConfig:
     body: str
     topic: str
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> ForceConfig:
     body, topic = text(plugin, "bodyName", ""), text(plugin, "topicName", "")
     if not body or not topic:
         raise ModelError(f"{plugin.filename} needs <bodyName> and <topicName>")
-    return ForceConfig(body.split("::")[-1], topic, text(plugin, "robotNamespace", ""))
+    return ForceConfig(body.split("::")[-1], topic, robot_namespace_tag(plugin.params))
 
 
 class LinkWrench:

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from typing import Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, JointHandle, Vec3, quat_rotate
-from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.kinematics import add, conjugate, cross, sub
 from turtle_sim_ode.world.plugins.tags import number, text
@@ -36,7 +36,7 @@ class FtSensorConfig:
     topic: str
     update_rate: float = 0.0
     gaussian_noise: float = 0.0
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> FtSensorConfig:
@@ -48,7 +48,7 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         topic,
         number(plugin, "updateRate", 0.0),
         number(plugin, "gaussianNoise", 0.0),
-        text(plugin, "robotNamespace", ""),
+        robot_namespace_tag(plugin.params),
     )
 
 

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from typing import Dict, Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel
-from turtle_sim_ode.models.text import read_number
+from turtle_sim_ode.models.text import read_number, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.plugins.hector_sensor_model import ErrorModel, SensorError, Vec3, error_model
 from turtle_sim_ode.world.plugins.tags import flag, text
@@ -48,7 +48,7 @@ class HectorGpsConfig:
     position: ErrorModel = field(default_factory=ErrorModel)
     velocity: ErrorModel = field(default_factory=ErrorModel)
     update_rate: float = 4.0  # Load's updateTimer.setUpdateRate(4.0), then <updateRate> / <updatePeriod>
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> HectorGpsConfig:
@@ -72,7 +72,7 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         position=error_model(plugin, ""),
         velocity=error_model(plugin, "velocity"),
         update_rate=1.0 / period if period > 0 else rate,
-        robot_namespace=text(plugin, "robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(plugin.params),
     )
 
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, Quat, quat_from_rpy, quat_multiply, quat_rotate
-from turtle_sim_ode.models.text import read_number
+from turtle_sim_ode.models.text import read_number, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.plugins.hector_sensor_model import ErrorModel, SensorError, Vec3, error_model, vector_tag
 from turtle_sim_ode.world.plugins.tags import text
@@ -35,7 +35,7 @@ class HectorImuConfig:
     yaw: ErrorModel = field(default_factory=ErrorModel)
     rpy_offset: Vec3 = (0.0, 0.0, 0.0)
     update_rate: float = 0.0  # UpdateTimer: <updateRate>, or 1 / <updatePeriod>; 0 = every step
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> HectorImuConfig:
@@ -58,7 +58,7 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         yaw=error_model(plugin, "yaw"),
         rpy_offset=vector_tag(plugin, "rpyOffset", (0.0, 0.0, 0.0)),
         update_rate=1.0 / period if period > 0 else update_rate,
-        robot_namespace=text(plugin, "robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(plugin.params),
     )
 
 

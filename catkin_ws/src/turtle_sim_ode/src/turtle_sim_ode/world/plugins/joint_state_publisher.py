@@ -2,9 +2,9 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import List, Mapping, Tuple
+from typing import List, Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.plugins.tags import number, text
 
@@ -18,7 +18,7 @@ class JointStatesConfig:
 
     joints: List[str]
     update_rate: float
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
     @property
     def joints_needed(self) -> Tuple[str, ...]:
@@ -32,5 +32,5 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
     return JointStatesConfig(
         joints=joints,
         update_rate=number(plugin, "updateRate", 100.0),
-        robot_namespace=text(plugin, "robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(plugin.params),
     )

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Mapping, Tuple
 
+from turtle_sim_ode.models.text import robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.sensors.kobuki import KOBUKI_CLIFF_THRESHOLD
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
@@ -50,7 +51,7 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         publish_tf=flag(plugin, "publish_tf", True),
         publish_joint_states=True,
         update_rate=0.0,
-        robot_namespace=text(plugin, "robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(plugin.params),
         cliff_threshold=number(plugin, "cliff_detection_threshold", KOBUKI_CLIFF_THRESHOLD, minimum=1e-6),
         cliff_sensors=(
             text(plugin, "cliff_sensor_left_name", CLIFF_SENSORS[0]),

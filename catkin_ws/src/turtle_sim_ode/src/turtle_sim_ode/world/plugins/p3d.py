@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from typing import List, Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import Vec3
-from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.plugins.tags import number, text, triple
 
@@ -25,7 +25,7 @@ class GroundTruthConfig:
     gaussian_noise: float
     xyz_offset: Tuple[float, float, float] = (0.0, 0.0, 0.0)
     rpy_offset: Tuple[float, float, float] = (0.0, 0.0, 0.0)
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> GroundTruthConfig:
@@ -40,7 +40,7 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         gaussian_noise=number(plugin, "gaussianNoise", 0.0),
         xyz_offset=triple(plugin, "xyzOffsets" if "xyzOffsets" in plugin.params else "xyzOffset"),
         rpy_offset=triple(plugin, "rpyOffsets" if "rpyOffsets" in plugin.params else "rpyOffset"),
-        robot_namespace=text(plugin, "robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(plugin.params),
     )
 
 

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Mapping, Tuple
+from typing import Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, JointHandle, rpy_of
-from turtle_sim_ode.models.text import ModelError, read_number
+from turtle_sim_ode.models.text import ModelError, read_number, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 from turtle_sim_ode.world.plugins.tags import number, text
@@ -27,7 +27,7 @@ class PlanarMoveConfig:
     base_frame: str = "base_footprint"
     odometry_rate: float = 20.0  # Hz of sim time; 0 = no odometry
     cmd_timeout: float = -1.0  # s of sim time; negative = none
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
     @property
     def publish_tf(self) -> bool:
@@ -102,5 +102,5 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         base_frame=text(plugin, "robotBaseFrame", "base_footprint"),
         odometry_rate=number(plugin, "odometryRate", 20.0),
         cmd_timeout=timeout,
-        robot_namespace=text(plugin, "robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(plugin.params),
     )

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Mapping, Tuple
+from typing import Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, JointHandle
-from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.diff_drive import DiffDriveController, DiffDriveParams
 from turtle_sim_ode.world.plugins.tags import flag, number, text
@@ -37,7 +37,7 @@ class SkidSteerConfig:
     covariance_x: float = 0.0001
     covariance_y: float = 0.0001
     covariance_yaw: float = 0.01
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
     @property
     def joints_needed(self) -> Tuple[str, ...]:
@@ -109,5 +109,5 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         covariance_x=number(plugin, "covariance_x", 0.0001),
         covariance_y=number(plugin, "covariance_y", 0.0001),
         covariance_yaw=number(plugin, "covariance_yaw", 0.01),
-        robot_namespace=text(plugin, "robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(plugin.params),
     )

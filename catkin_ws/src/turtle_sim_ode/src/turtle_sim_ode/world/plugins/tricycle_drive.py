@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Mapping, Tuple
+from typing import Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.builder import BuiltModel, JointHandle
 from turtle_sim_ode.models.joint_positions import move_joints
-from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
@@ -56,7 +56,7 @@ class TricycleConfig:
     publish_wheel_tf: bool = False
     publish_wheel_joint_state: bool = False
     update_rate: float = 100.0  # Hz of sim time; 0 = every step
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
     @property
     def joints_needed(self) -> Tuple[str, ...]:
@@ -308,5 +308,5 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
         publish_wheel_tf=flag(plugin, "publishWheelTF", False),
         publish_wheel_joint_state=flag(plugin, "publishWheelJointState", False),
         update_rate=_bounded(plugin, "updateRate", 100.0, sanity.MAX_UPDATE_RATE),
-        robot_namespace=text(plugin, "robotNamespace", ""),
+        robot_namespace=robot_namespace_tag(plugin.params),
     )

@@ -20,12 +20,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, List, Mapping, Tuple
+from typing import Dict, List, Mapping, Optional, Tuple
 
 import ode
 
 from turtle_sim_ode.models.builder import BuiltModel, quat_rotate
-from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.urdf import GazeboPlugin
 from turtle_sim_ode.world.plugins.p3d import find_body
 from turtle_sim_ode.world.plugins.tags import text
@@ -48,7 +48,7 @@ class VacuumGripperConfig:
 
     body: str
     topic: str
-    robot_namespace: str = ""
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace>
 
 
 def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object]) -> VacuumGripperConfig:
@@ -58,7 +58,7 @@ def read(model_name: str, plugin: GazeboPlugin, overrides: Mapping[str, object])
     for tag, value in (("bodyName", body), ("topicName", topic)):
         if not value:
             raise ModelError(f"{plugin.filename} needs <{tag}>")
-    return VacuumGripperConfig(body, topic, text(plugin, "robotNamespace", ""))
+    return VacuumGripperConfig(body, topic, robot_namespace_tag(plugin.params))
 
 
 def gazebo_links(model: BuiltModel) -> List[str]:
