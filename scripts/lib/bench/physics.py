@@ -53,7 +53,7 @@ class BarePyOde:
     def __init__(self, sim: Any) -> None:
         import ode
         from turtle_sim_ode.physics import ode_constants
-        from turtle_sim_ode.models.builder import compose, inverse
+        from turtle_sim_ode.models.transforms import compose, inverse
         from turtle_sim_ode.physics.settings import configure_world
         from turtle_sim_ode.physics.surfaces import combine_surfaces
 

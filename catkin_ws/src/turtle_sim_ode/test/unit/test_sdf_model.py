@@ -6,7 +6,8 @@ import random
 import pytest
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
 
-from turtle_sim_ode.models.builder import build_model, compose, inverse, pose_transform, quat_from_rpy
+from turtle_sim_ode.models.builder import build_model
+from turtle_sim_ode.models.transforms import compose, inverse, pose_transform, quat_from_rpy
 from turtle_sim_ode.models.sdf import parse_sdf_model
 from turtle_sim_ode.models.sdf_parts import PLANE_THICKNESS
 from turtle_sim_ode.models.sdf_world import Include, parse_sdf_world

@@ -10,7 +10,7 @@ from conftest import MESH_PACKAGE, TURTLEBOT_URDF, fixture_paths
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from turtle_sim_ode.models.builder import Transform, compose, quat_multiply
+from turtle_sim_ode.models.transforms import Transform, compose, quat_multiply
 from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.ros.viewer_config import FIXED_FRAME, SCENE_TOPIC, rviz_config
 from turtle_sim_ode.world.simulation import Simulation
@@ -135,10 +135,12 @@ def test_the_simulators_own_ground_is_drawn_and_a_worlds_ground_is_its_models_vi
     assert ground.size[:2] == (100.0, 100.0) and position[2] + ground.size[2] / 2 == pytest.approx(0.0)
     # A world's ground is a model (model://ground_plane under its include's name): drawn once, from its visual.
     sim = Simulation()
-    sim.load_world(parse_sdf_world(
-        "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri><name>ground_plane_0</name>"
-        "</include></world></sdf>"
-    ))
+    sim.load_world(
+        parse_sdf_world(
+            "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri><name>ground_plane_0</name>"
+            "</include></world></sdf>"
+        )
+    )
     update = scene_of(sim)
     assert set(update.added) == {"ground_plane_0"}
     # A world without a ground plane has no ground, and none is drawn.

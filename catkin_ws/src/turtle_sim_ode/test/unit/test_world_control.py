@@ -6,7 +6,7 @@ import pytest
 from turtle_sim_ode.physics.trimesh import quickstep_w
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
 
-from turtle_sim_ode.models.builder import quat_rotate
+from turtle_sim_ode.models.transforms import quat_rotate
 from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.physics import ode_constants as oc

@@ -7,14 +7,8 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 import ode
 
-from turtle_sim_ode.models.builder import (
-    BuiltModel,
-    Quat,
-    Vec3,
-    compose,
-    inverse,
-    quat_rotate,
-)
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Quat, Vec3, compose, inverse, quat_rotate
 from turtle_sim_ode.models.description import RobotModel
 from turtle_sim_ode.physics.contacts import ContactWatch
 from turtle_sim_ode.physics.world import PhysicsWorld

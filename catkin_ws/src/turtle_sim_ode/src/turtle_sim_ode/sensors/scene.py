@@ -17,7 +17,8 @@ from typing import Dict, List, Mapping, Optional, Set, Tuple
 import numpy as np
 import ode
 
-from turtle_sim_ode.models.builder import BuiltModel, pose_transform, quat_matrix
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import pose_transform, quat_matrix
 from turtle_sim_ode.models.materials import DEFAULT_COLOR, RGB
 from turtle_sim_ode.models.meshes import MeshFiles, mesh_file, scaled_mesh
 from turtle_sim_ode.models.resources import ResourcePaths

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Dict, Sequence, Tuple
 
-from turtle_sim_ode.models.builder import Transform, Vec3, compose, inverse, quat_rotate
+from turtle_sim_ode.models.transforms import Transform, Vec3, compose, inverse, quat_rotate
 from turtle_sim_ode.models.urdf import MAX_LENGTH
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.world.entities import SCOPE, Frame

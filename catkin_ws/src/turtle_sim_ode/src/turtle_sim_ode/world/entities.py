@@ -6,7 +6,8 @@ from typing import Dict, List, Optional, Tuple
 
 import ode
 
-from turtle_sim_ode.models.builder import BuiltModel, JointHandle, Transform, Vec3
+from turtle_sim_ode.models.built import BuiltModel, JointHandle
+from turtle_sim_ode.models.transforms import Transform, Vec3
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.world.plugins import DriveRobot
 from turtle_sim_ode.world.records import Load

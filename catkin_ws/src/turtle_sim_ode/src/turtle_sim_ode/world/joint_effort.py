@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from typing import Callable, Optional
 
-from turtle_sim_ode.models.builder import JointHandle
+from turtle_sim_ode.models.built import JointHandle
 from turtle_sim_ode.models.description import JointLimits
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Sequence, Tuple
 
-from turtle_sim_ode.models.builder import quat_rotate
+from turtle_sim_ode.models.transforms import quat_rotate
 from turtle_sim_ode.models.urdf import MAX_LENGTH
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.world.entities import SCOPE, EntityLookup

@@ -6,7 +6,8 @@ import math
 from dataclasses import replace
 from typing import Dict, List, Sequence, Union
 
-from turtle_sim_ode.models.builder import _rotated_inertia, inverse
+from turtle_sim_ode.models.inertia import rotated_inertia
+from turtle_sim_ode.models.transforms import inverse
 from turtle_sim_ode.models.urdf import MAX_INERTIA, MAX_LENGTH, MAX_MASS, _is_positive_definite
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
@@ -85,7 +86,7 @@ class PropertyControl(EntityLookup):
         model, link, body = self._link_body(name)
         com, rotation = inverse(model.links[link].offset)
         mass = body.getMass()
-        (ixx, ixy, ixz), (_, iyy, iyz), (_, _, izz) = _rotated_inertia(rotation, mass.I)
+        (ixx, ixy, ixz), (_, iyy, iyz), (_, _, izz) = rotated_inertia(rotation, mass.I)
         return LinkProperties(
             com_position=com,
             com_orientation=(0.0, 0.0, 0.0, 1.0),
@@ -135,7 +136,7 @@ class PropertyControl(EntityLookup):
                 f"its smallest principal moment {lowest:.3g} kg m^2 must be at least {floor:.3g} (ODE would spin "
                 f"the body up and let it sink through the ground)"
             )
-        model.set_mass(link, mass, com, _rotated_inertia(rotation, matrix))
+        model.set_mass(link, mass, com, rotated_inertia(rotation, matrix))
         body.setGravityMode(bool(gravity_mode))
 
     def joint_properties(self, name: str) -> JointProperties:

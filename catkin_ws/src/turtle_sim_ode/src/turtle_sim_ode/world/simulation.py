@@ -6,7 +6,9 @@ import logging
 from dataclasses import dataclass
 from typing import Dict, List, Mapping, Optional, Protocol, Sequence, Tuple, Union
 
-from turtle_sim_ode.models.builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
+from turtle_sim_ode.models.builder import build_model
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Transform, Vec3, compose, inverse, quat_from_rpy
 from turtle_sim_ode.models.includes import resolve_includes, sun_lights
 from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.models.meshes import load_meshes, uses_meshes

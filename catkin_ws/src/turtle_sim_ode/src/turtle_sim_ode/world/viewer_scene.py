@@ -14,7 +14,8 @@ import os
 from dataclasses import dataclass, field
 from typing import Dict, Iterable, List, Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, pose_transform
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Transform, compose, pose_transform
 from turtle_sim_ode.models.materials import DEFAULT_COLOR, GAZEBO_MATERIALS
 from turtle_sim_ode.models.meshes import MeshFiles, mesh_file
 from turtle_sim_ode.models.resources import ResourcePaths

@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Dict, List, Mapping, Optional, Protocol, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, JointHandle
+from turtle_sim_ode.models.built import BuiltModel, JointHandle
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.sensors.config import SensorBlocks
