@@ -72,6 +72,6 @@ def test_scripts_have_no_import_circle() -> None:
     modules = module_names()
     assert "bench.camera" in modules and "ros_run.processes" in modules and "bench_sim" in modules
     graph = {name: imports_of(path, set(modules)) - {name} for name, path in modules.items()}
-    assert graph["bench.camera"], "the import graph is empty: the module names no longer match the imports"
+    assert "bench.camera" in graph["bench.camera_peers"], "the module names no longer match the imports"
     circle = find_circle(graph)
     assert circle is None, "import circle: " + " -> ".join(circle)

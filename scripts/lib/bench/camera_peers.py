@@ -1,20 +1,23 @@
-"""bench_camera.py --peers: the renderers issue #15 names (pyrender offscreen on OSMesa and on EGL, Open3D's ray
-casting) against our rays in C, on the same frames of bench_camera's room. The scene (primitives, camera poses along
-the robot's circle, lens, light) goes to scripts/lib/renderer_peers.py as JSON, our depth images as .npz; that script
-runs in the venv .cache/renderer-venv (made on first use: peer_venv), one process per renderer. Ours is timed here:
+"""``python3 -m bench.camera_peers`` (in scripts/lib): the renderers issue #15 names (pyrender offscreen on OSMesa
+and on EGL, Open3D's ray casting) against our rays in C, on the same frames of bench.camera's room. The scene
+(primitives, camera poses along the robot's circle, lens, light) goes to scripts/lib/peers/renderer_peers.py as JSON,
+our depth images as .npz; that script runs in the venv .cache/renderer-venv (made on first use: peers.venv), one
+process per renderer. Ours is timed here:
 CameraSensor.render on each frame, which rebuilds its primitive table from the scene every frame."""
 from __future__ import annotations
 
+import argparse
 import dataclasses
 import json
 import os
 import subprocess
+import sys
 import tempfile
 import time
-from typing import Any, Dict, List, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
-from bench.camera_scene import CAMERAS, MODEL, turtlebot_in_room
+from bench.camera import CAMERAS, MODEL, PACKAGE, turtlebot_in_room
 from peers.venv import venv_with
 from ros_run.process_stats import cpu_ticks
 
@@ -188,3 +191,24 @@ def table(result: Dict[str, Any]) -> str:
         % (result["frames"], result["repeats"], result["threads"] or "default", 100 * result["steal_share"])
     )
     return "\n".join(lines)
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="4 frames, 2 repeats")
+    parser.add_argument(
+        "--peer-threads", type=int, default=1, help="threads of every renderer, ours too (0: each one's default)"
+    )
+    parser.add_argument("--peers-json", help="write the peers' figures to this file")
+    args = parser.parse_args(argv)
+    sys.path.insert(0, os.path.join(PACKAGE, "src"))
+    peers = compare(4, 2, args.peer_threads) if args.quick else compare(8, 3, args.peer_threads)
+    print(table(peers))
+    if args.peers_json:
+        with open(args.peers_json, "w") as out:
+            json.dump(peers, out, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

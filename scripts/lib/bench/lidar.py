@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """What a 3D lidar costs the simulation (issue #23): the TurtleBot driving its circle at 1 ms steps in
-bench.camera_scene's furnished room, stepped without a lidar and with a VLP-16 (velodyne_description's VLP-16 macro: 16
+bench.camera's furnished room, stepped without a lidar and with a VLP-16 (velodyne_description's VLP-16 macro: 16
 lasers x 1800 samples, 10 Hz, libgazebo_ros_velodyne_laser.so) on its base, each scan cast and its cloud packed as
 the ROS adapter does (sockets aside).
 
@@ -16,8 +16,7 @@ import os
 import sys
 from typing import Any, Callable, Dict, Optional, Sequence, Tuple
 
-from bench.camera import best_seconds, stepper
-from bench.camera_scene import MODEL, PACKAGE, turtlebot_in_room
+from bench.camera import MODEL, PACKAGE, best_seconds, stepper, turtlebot_in_room
 
 # (horizontal samples, lasers, rate Hz): the VLP-16 of the issue first.
 LIDARS: Tuple[Tuple[int, int, float], ...] = ((1800, 16, 10.0), (1024, 64, 10.0))

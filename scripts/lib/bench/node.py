@@ -7,7 +7,7 @@ import statistics
 import time
 from typing import Any, Dict, List, Optional, Tuple
 
-from bench.camera_scene import CAMERAS, TARGET_SHARE
+from bench.camera import CAMERAS, TARGET_SHARE
 from bench.plan import CALLER_ID, PACKAGE, STARTUP_TIMEOUT_S, BenchError, Plan
 from bench.probe import Probe, first_odom_task, measure_rtf_task
 from ros_run.master import master

@@ -12,7 +12,7 @@ import time
 import traceback
 from typing import Any, Callable, Dict, List, Optional, Sequence, Set, Tuple
 
-from bench.camera_scene import CAMERA_TOPICS, room_sdf, with_camera
+from bench.camera import CAMERA_TOPICS, room_sdf, with_camera
 from bench.plan import CALLER_ID, CIRCLE, STARTUP_TIMEOUT_S, URDF_PATH, BenchError
 from ros_run.process_stats import cpu_seconds
 from ros_run.master import Master, node_pid

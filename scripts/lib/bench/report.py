@@ -9,7 +9,7 @@ import shutil
 import subprocess
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
-from bench.camera_scene import CAMERAS, TARGET_SHARE
+from bench.camera import CAMERAS, TARGET_SHARE
 from bench.camera import table as camera_table
 from bench.lidar import table as lidar_table
 from bench.control import table as control_table

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The renderers issue #15 names as alternatives to our rays in C, on the scene scripts/lib/bench/camera_peers.py exports
-from bench.camera_scene's room: run by the Python of the venv .cache/renderer-venv (camera_peers makes it), one renderer
+from bench.camera's room: run by the Python of the venv .cache/renderer-venv (camera_peers makes it), one renderer
 per process (PyOpenGL picks its platform once, at import).
 
 Renderers (``--renderer``):
