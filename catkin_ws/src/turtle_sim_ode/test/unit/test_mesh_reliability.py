@@ -288,7 +288,11 @@ def collada_declaring(triangles: int) -> bytes:
     "name, data, message",
     [
         ("big.stl", ascii_stl_of(64), "has 713924 triangles"),
-        ("big_binary.stl", b"\0" * 80 + (2**20).to_bytes(4, "little") + b"\0" * (50 * 2**20), "has 1048576 triangles"),
+        (
+            "big_binary.stl",
+            b"\0" * 80 + (2**20).to_bytes(4, "little") + b"\0" * (50 * 2**20),
+            "has 1048576 triangles",
+        ),
         ("big.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\n" + b"f 1 2 3\n" * (8 * 2**20), "has at least 8388608 triangles"),
         ("big.dae", collada_declaring(300_000), "has at least 300000 triangles"),
     ],
