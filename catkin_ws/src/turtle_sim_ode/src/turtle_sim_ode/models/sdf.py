@@ -1,4 +1,4 @@
-"""Parse SDF 1.4-1.7 models (no file access) into the RobotModel of models.urdf.
+"""Parse SDF 1.4-1.7 models (no file access) into the RobotModel of models.description.
 
 SDF places every link relative to the model; the URDF-style tree that models.builder
 consumes has each joint's origin = parent link pose^-1 * child link pose, and the root

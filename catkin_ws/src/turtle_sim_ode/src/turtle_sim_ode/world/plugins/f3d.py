@@ -96,7 +96,7 @@ class LinkForce:
         self._mass, self._inertia = mass.mass, mass.I
         start: List[Optional[tuple]] = [None]  # (force, torque, velocity, angular velocity, quaternion) at the start
 
-        def before_step() -> None:  # a closure: the world must not hold this object (see models.builder)
+        def before_step() -> None:  # a closure: the world must not hold this object (see models.built)
             start[0] = (
                 body.getForce(),
                 body.getTorque(),
