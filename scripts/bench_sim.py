@@ -19,7 +19,7 @@ machine's load and the CPU time the host stole, so a figure measured under load 
 
 Every ROS process runs against a master of its own on a free port and is stopped at the end, also on Ctrl-C, SIGTERM
 or error: SIGINT, then SIGKILL to its process group and to every process with its tag in the environment (roslaunch
-starts nodes in sessions of their own). Without the workspace sourced it sources it itself (scripts/lib/workspace_env.py).
+starts nodes in sessions of their own). Without the workspace sourced it sources it itself (scripts/lib/ros_run/workspace_env.py).
 """
 from __future__ import annotations
 
@@ -32,25 +32,25 @@ import sys
 import tempfile
 from typing import Any, Callable, Dict, Optional, Sequence
 
-# This file parses the arguments and runs the sections; they are in scripts/lib: bench_physics (1), bench_node and
-# bench_probe (2-4), bench_peer (5), bench_camera and bench_node (6), bench_lidar (7), bench_control (8),
-# bench_scaling (9), bench_viewer (10), bench_report (targets, table), bench_plan (run sizes).
+# This file parses the arguments and runs the sections; they are in scripts/lib/bench: physics (1), node and
+# probe (2-4), peer (5), camera and node (6), lidar (7), control (8), scaling (9), viewer (10), report (targets,
+# table), plan (run sizes).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from workspace_env import ensure_workspace_env  # noqa: E402
+from ros_run.workspace_env import ensure_workspace_env  # noqa: E402
 
 ensure_workspace_env(__file__, sys.argv[1:])  # run as the README shows it, the workspace sourced or not
-from bench_camera import camera_cost  # noqa: E402
-from bench_lidar import lidar_cost  # noqa: E402
-from bench_control import ros_control_cost  # noqa: E402
-from bench_viewer import viewer_cost  # noqa: E402
-from bench_node import camera_node, full_node, launch_to_first_odom, real_time  # noqa: E402
-from bench_peer import peer  # noqa: E402
-from bench_physics import physics_only  # noqa: E402
-from bench_plan import FULL, QUICK, REPO, Plan  # noqa: E402
-from bench_report import close_machine, machine, table, targets, write_report  # noqa: E402
-from bench_scaling import scaling_cost  # noqa: E402
-from process_stats import cpu_ticks  # noqa: E402
-from ros_processes import Processes, ToolError  # noqa: E402
+from bench.camera import camera_cost  # noqa: E402
+from bench.lidar import lidar_cost  # noqa: E402
+from bench.control import ros_control_cost  # noqa: E402
+from bench.viewer import viewer_cost  # noqa: E402
+from bench.node import camera_node, full_node, launch_to_first_odom, real_time  # noqa: E402
+from bench.peer import peer  # noqa: E402
+from bench.physics import physics_only  # noqa: E402
+from bench.plan import FULL, QUICK, REPO, Plan  # noqa: E402
+from bench.report import close_machine, machine, table, targets, write_report  # noqa: E402
+from bench.scaling import scaling_cost  # noqa: E402
+from ros_run.process_stats import cpu_ticks  # noqa: E402
+from ros_run.processes import Processes, ToolError  # noqa: E402
 
 DEFAULT_JSON = os.path.join(REPO, "bench_results", "bench_sim.json")
 
@@ -66,7 +66,7 @@ def measure(results: Dict[str, Any], key: str, title: str, run: Callable[[], Dic
 
 
 def cameras(plan: Plan, processes: Processes) -> Dict[str, Any]:
-    """Section 6: bench_camera without ROS, then the node."""
+    """Section 6: bench.camera without ROS, then the node."""
     print("  without ROS ...", flush=True)
     return {"in_process": camera_cost(plan.physics_steps, plan.physics_repeats), "node": camera_node(plan, processes)}
 

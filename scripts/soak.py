@@ -24,7 +24,7 @@ The velocity commands come at 10 Hz wall: above a real-time factor of about 6 th
 time) passes between two of them and the robot drives in bursts, which is load all the same.
 
 Everything it starts is stopped on exit, also on Ctrl-C, SIGTERM and errors. Without the workspace sourced it
-sources it itself (scripts/lib/workspace_env.py; scripts/soak.sh does too).
+sources it itself (scripts/lib/ros_run/workspace_env.py; scripts/soak.sh does too).
 """
 from __future__ import annotations
 
@@ -41,16 +41,16 @@ import tempfile
 import traceback
 from typing import Any, Dict, Optional, Sequence
 
-# This file parses the arguments and reports; the soak is in scripts/lib: soak_node (the driving and spawning node),
-# soak_sampling (the run and its samples), soak_report (the verdict and the table).
+# This file parses the arguments and reports; the soak is in scripts/lib/soak: node (the driving and spawning node),
+# sampling (the run and its samples), report (the verdict and the table).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from workspace_env import ensure_workspace_env  # noqa: E402
+from ros_run.workspace_env import ensure_workspace_env  # noqa: E402
 
 ensure_workspace_env(__file__, sys.argv[1:])  # run as the README shows it, the workspace sourced or not
-from ros_processes import Processes, ToolError  # noqa: E402
-from soak_node import COMMAND_PERIOD_S  # noqa: E402
-from soak_report import DEFAULT_MAX_COUNT_GROWTH, DEFAULT_MAX_RSS_GROWTH_MIB_PER_MIN, summarize, table  # noqa: E402
-from soak_sampling import run_soak  # noqa: E402
+from ros_run.processes import Processes, ToolError  # noqa: E402
+from soak.node import COMMAND_PERIOD_S  # noqa: E402
+from soak.report import DEFAULT_MAX_COUNT_GROWTH, DEFAULT_MAX_RSS_GROWTH_MIB_PER_MIN, summarize, table  # noqa: E402
+from soak.sampling import run_soak  # noqa: E402
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

@@ -3,7 +3,7 @@
 loopback port, the world paused until the TurtleBot is in, its output in a log; then circle_demo in the foreground,
 once the simulator offers its services, so that the demo ends with its own last lines (the lap's summary and the
 plot's path) rather than with roslaunch's shutdown; then the launch is stopped quietly. Everything it started is
-stopped on exit, also on Ctrl-C and SIGTERM (scripts/lib/ros_processes.py). Exits with circle_demo's status, 1 if
+stopped on exit, also on Ctrl-C and SIGTERM (scripts/lib/ros_run/processes.py). Exits with circle_demo's status, 1 if
 the simulator did not start, 130 or 143 when interrupted."""
 from __future__ import annotations
 
@@ -13,10 +13,10 @@ import signal
 import sys
 from typing import Optional, Sequence
 
-from ros_master import service_offered
+from ros_run.master import service_offered
 
 from turtle_sim_ode.analysis.waiting import wait_for
-from ros_processes import Processes, free_port
+from ros_run.processes import Processes, free_port
 
 CALLER_ID = "/demo"  # towards the master, before circle_demo exists
 READY_SERVICE = "/gazebo/spawn_urdf_model"  # offered once the simulator is up: the launch's parameters are set

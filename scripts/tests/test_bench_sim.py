@@ -91,7 +91,7 @@ def test_camera_runs_render_at_their_rate_only_when_watched(results):
 
 @pytest.mark.parametrize("script", ["bench_sim.py", "soak.py"])
 def test_runs_as_the_readme_shows_without_the_workspace_sourced(tmp_path, script):
-    """The scripts source the workspace themselves (scripts/lib/workspace_env.py), as demo.sh does: run from another
+    """The scripts source the workspace themselves (scripts/lib/ros_run/workspace_env.py), as demo.sh does: run from another
     folder with a bare environment, their imports of turtle_sim_ode and rospy succeed and --help answers."""
     if not os.path.isfile(os.path.join(REPO, "catkin_ws", "devel", "setup.bash")):
         pytest.skip("the workspace is not built")

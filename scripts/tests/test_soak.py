@@ -8,8 +8,8 @@ import subprocess
 
 import pytest
 from conftest import ROS_PYTHON, ros_missing
-from soak_node import Stats
-from soak_report import summarize
+from soak.node import Stats
+from soak.report import summarize
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SOAK = os.path.join(REPO, "scripts", "soak.py")

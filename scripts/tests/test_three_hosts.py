@@ -10,7 +10,7 @@ import textwrap
 
 import pytest
 from conftest import ros_missing
-from ros_processes import Processes
+from ros_run.processes import Processes
 
 SUBNET = "10.213.77"
 PREFIX = "tso%d" % (os.getpid() % 100000)
@@ -98,7 +98,7 @@ def test_master_simulator_and_driver_on_three_hosts(three_hosts, tmp_path):
     reason = ros_missing()
     if reason:
         pytest.skip(reason)
-    # Each host's processes in a tagged process group of their own (scripts/lib/ros_processes.py), output to
+    # Each host's processes in a tagged process group of their own (scripts/lib/ros_run/processes.py), output to
     # <host>.log in tmp_path; all stopped on leaving, whatever roslaunch started included.
     with Processes(str(tmp_path)) as processes:
         for host, command in (

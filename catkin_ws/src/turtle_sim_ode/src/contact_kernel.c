@@ -1,5 +1,5 @@
-/* See include/turtle_sim_ode/contact_kernel.h. Each step mirrors PhysicsWorld.step / _near / _add_contacts /
- * _merge_line_contact / _record_contacts in physics.py: keep them in step. */
+/* See include/turtle_sim_ode/contact_kernel.h. Each step mirrors PhysicsWorld.step / _near / _record_contacts in
+ * physics/world.py and add_contact_joints / merge_line_contact in physics/contacts.py: keep them in step. */
 #include "turtle_sim_ode/contact_kernel.h"
 
 #include <math.h>
@@ -13,7 +13,7 @@ enum
   kMaxPointsPerPair = 150
 };
 
-/* physics.world.PARALLEL_FDIR1_TOLERANCE */
+/* physics.contacts.PARALLEL_FDIR1_TOLERANCE */
 static const double kParallelFdir1Tolerance = 1e-6;
 
 typedef struct
@@ -246,7 +246,7 @@ static int record(TsoContactKernel* kernel, dGeomID geom, dGeomID other, const d
   return 0;
 }
 
-/* As physics._record_contacts: for each watched side of the pair, every point. */
+/* As physics.world's _record_contacts: for each watched side of the pair, every point. */
 static void record_contacts(TsoContactKernel* kernel, const dContactGeom* points, int count, dGeomID a, dGeomID b)
 {
   int i;
@@ -262,7 +262,7 @@ static void record_contacts(TsoContactKernel* kernel, const dContactGeom* points
   }
 }
 
-/* As physics._merge_line_contact: a flat two-point line contact becomes one point at its centre of pressure.
+/* As physics.contacts.merge_line_contact: a flat two-point line contact becomes one point at its centre of pressure.
  * Returns the number of points left. */
 static int merge_line_contact(dContactGeom* points)
 {
@@ -284,7 +284,7 @@ static int merge_line_contact(dContactGeom* points)
   return 1;
 }
 
-/* As physics.world._friction_direction: fdir1 turned by the geom's rotation into out, unprojected and
+/* As physics.contacts.friction_direction: fdir1 turned by the geom's rotation into out, unprojected and
  * unnormalised as gazebo-classic's ODEPhysics::Collide hands it to ODE; 0 where normal x fdir1 vanishes (Gazebo's
  * ODE then uses dPlaneSpace, as stock ODE does without dContactFDir1). */
 static int friction_direction(dGeomID geom, const double* fdir1, const dReal* normal, dReal* out)
@@ -305,8 +305,8 @@ static int friction_direction(dGeomID geom, const double* fdir1, const dReal* no
   return 1;
 }
 
-/* As physics._add_contacts: one contact joint per point, between body1 and body2 (either may be 0); geom1 and
- * geom2 are the pair in the order its surface was looked up. */
+/* As physics.contacts.add_contact_joints: one contact joint per point, between body1 and body2 (either may be 0);
+ * geom1 and geom2 are the pair in the order its surface was looked up. */
 static void add_contacts(TsoContactKernel* kernel, dContactGeom* points, int count, dBodyID body1, dBodyID body2,
                          const TsoPairSurface* surface, int merge_line, dGeomID geom1, dGeomID geom2)
 {

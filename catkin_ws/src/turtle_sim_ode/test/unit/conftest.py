@@ -10,7 +10,7 @@ PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(PACKAGE_ROOT / "src"))
 
 from turtle_sim_ode.models.resources import ResourcePaths  # noqa: E402
-from turtle_sim_ode.physics.world import PhysicsParams  # noqa: E402
+from turtle_sim_ode.physics.settings import PhysicsParams  # noqa: E402
 from turtle_sim_ode.world.simulation import Simulation
 
 TURTLEBOT_URDF = (PACKAGE_ROOT / "urdf" / "turtlebot.urdf").read_text()

@@ -9,8 +9,9 @@ import ode
 import pytest
 from conftest import PACKAGE_ROOT, fixture_paths
 
-from turtle_sim_ode.models.builder import quat_from_rpy
-from turtle_sim_ode.models.sdf import parse_sdf_model, parse_sdf_world
+from turtle_sim_ode.models.transforms import quat_from_rpy
+from turtle_sim_ode.models.sdf import parse_sdf_model
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.physics.trimesh import MeshGeom

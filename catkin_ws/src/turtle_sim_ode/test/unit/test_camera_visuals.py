@@ -16,7 +16,8 @@ from test_camera import CAMERA_URDF, RED_BOX, red_dominant
 from turtle_sim_ode.models.materials import GAZEBO_MATERIALS
 from turtle_sim_ode.models.sdf import parse_sdf_model
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import Box, Mesh, Pose, Sphere, parse_urdf
+from turtle_sim_ode.models.description import Box, Mesh, Pose, Sphere
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.sensors.camera import CameraSensor, Frame
 from turtle_sim_ode.world.simulation import Simulation
 

@@ -12,7 +12,9 @@ import pytest
 from conftest import TURTLEBOT_URDF
 
 from turtle_sim_ode.physics import contact_kernel
-from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams, seed_ode_random
+from turtle_sim_ode.physics.settings import PhysicsParams
+from turtle_sim_ode.physics.surfaces import SurfaceParams
+from turtle_sim_ode.physics.world import PhysicsWorld, seed_ode_random
 from turtle_sim_ode.world.simulation import Simulation
 
 Trace = List[Tuple]

@@ -7,7 +7,7 @@ import math
 import pytest
 
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.force import FORCE, LinkWrench
 from turtle_sim_ode.world.simulation import Simulation

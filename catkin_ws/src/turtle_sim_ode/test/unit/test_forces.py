@@ -16,9 +16,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from turtle_sim_ode.models.builder import quat_matrix
+from turtle_sim_ode.models.transforms import quat_matrix
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.f3d import F3D, F3dConfig, LinkForce
 from turtle_sim_ode.world.plugins.force import LinkWrench

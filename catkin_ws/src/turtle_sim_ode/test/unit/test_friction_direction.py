@@ -18,7 +18,7 @@ import math
 from hypothesis import given
 from hypothesis import strategies as st
 
-from turtle_sim_ode.physics.world import PARALLEL_FDIR1_TOLERANCE, _friction_direction
+from turtle_sim_ode.physics.contacts import PARALLEL_FDIR1_TOLERANCE, friction_direction
 
 UP = (0.0, 0.0, 1.0)
 IDENTITY = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
@@ -48,7 +48,7 @@ def _cross(a, b):
 
 def test_a_rolling_wheels_fdir1_tilts_with_the_wheel_unprojected():
     for angle in (0.0, 0.3, 1.0, 2.5, -0.7):
-        direction = _friction_direction(_wheel_rotation(angle), (1.0, 0.0, 0.0), UP)
+        direction = friction_direction(_wheel_rotation(angle), (1.0, 0.0, 0.0), UP)
         assert direction is not None
         expected = (math.cos(angle), 0.0, -math.sin(angle))
         assert all(math.isclose(d, e, abs_tol=1e-12) for d, e in zip(direction, expected))
@@ -59,13 +59,13 @@ def test_a_rolling_wheels_fdir1_tilts_with_the_wheel_unprojected():
 
 def test_fdir1_along_the_normal_leaves_odes_own_directions():
     """The wheel's x axis pointing straight down: normal x fdir1 = 0, Gazebo's ODE falls back to dPlaneSpace."""
-    assert _friction_direction(_wheel_rotation(math.pi / 2), (1.0, 0.0, 0.0), UP) is None
-    assert _friction_direction(IDENTITY, (0.0, 0.0, 2.0), UP) is None
-    assert _friction_direction(IDENTITY, (0.0, 0.0, 0.0), UP) is None
+    assert friction_direction(_wheel_rotation(math.pi / 2), (1.0, 0.0, 0.0), UP) is None
+    assert friction_direction(IDENTITY, (0.0, 0.0, 2.0), UP) is None
+    assert friction_direction(IDENTITY, (0.0, 0.0, 0.0), UP) is None
 
 
 def test_an_unnormalised_fdir1_is_handed_on_unnormalised():
-    assert _friction_direction(IDENTITY, (2.0, 0.0, 0.5), UP) == (2.0, 0.0, 0.5)
+    assert friction_direction(IDENTITY, (2.0, 0.0, 0.5), UP) == (2.0, 0.0, 0.5)
 
 
 angles = st.floats(-math.pi, math.pi, allow_nan=False)
@@ -83,7 +83,7 @@ def test_generated_fdir1_is_only_turned(roll, pitch, yaw, fdir1, normal_tilt, no
         math.cos(normal_tilt),
     )
     turned = tuple(sum(rotation[3 * row + k] * fdir1[k] for k in range(3)) for row in range(3))
-    direction = _friction_direction(rotation, fdir1, normal)
+    direction = friction_direction(rotation, fdir1, normal)
     if all(abs(c) <= PARALLEL_FDIR1_TOLERANCE for c in _cross(normal, turned)):
         assert direction is None
         return

@@ -13,9 +13,11 @@ from pathlib import Path
 import pytest
 from conftest import TURTLEBOT_URDF
 
-from turtle_sim_ode.models.sdf import parse_sdf_model, parse_sdf_world
+from turtle_sim_ode.models.sdf import parse_sdf_model
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboSurface, parse_urdf
+from turtle_sim_ode.models.description import GazeboSurface
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.physics.world import seed_ode_random
 from turtle_sim_ode.world.simulation import Simulation
 

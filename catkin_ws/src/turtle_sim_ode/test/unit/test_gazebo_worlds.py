@@ -14,9 +14,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from turtle_sim_ode.models.resources import ResourcePaths
-from turtle_sim_ode.models.sdf import parse_sdf_model, parse_sdf_world
+from turtle_sim_ode.models.sdf import parse_sdf_model
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.ros.plugins.elevator import floor_number
 from turtle_sim_ode.world.plugins.elevator import Elevator, GazeboPid
 from turtle_sim_ode.world.rubble import BOARD_LENGTH, BOARD_SECTION, CINDER_BLOCK, RUBBLE, rubble

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from turtle_sim_ode.models.includes import BUILT_IN_GROUND_PLANE
 from turtle_sim_ode.models.resources import ResourcePaths
-from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.world.simulation import Simulation
 
 HALF = 0.1  # half the crate's side (m)

@@ -12,8 +12,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from turtle_sim_ode.models.sdf import parse_sdf_world
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.hector_gps import GNSS_FLAGS as FLAGS
 from turtle_sim_ode.world.plugins.hector_gps import HECTOR_GPS, HectorGps

@@ -11,7 +11,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.hector_imu import HECTOR_IMU, ErrorModel, HectorImu, SensorError
 from turtle_sim_ode.world.plugins.hector_sensor_model import RECONFIGURE_FIELDS, reconfigure

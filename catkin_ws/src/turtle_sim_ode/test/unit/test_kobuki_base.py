@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 from conftest import TurtleSim
 
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.sensors.kobuki import (
     DROPPED,
     RAISED,

@@ -19,7 +19,7 @@ SOURCE = PACKAGE_ROOT / "src" / "turtle_sim_ode"
 HELPERS = "analysis"
 LAYERS = ("physics", "models", "control", "sensors", "world", "ros")
 ROS_MODULES = ("rospy", "genpy", "rosgraph", "rospkg", "tf2_ros", "dynamic_reconfigure")
-MAX_MODULE_LINES = 700
+MAX_MODULE_LINES = 500
 
 
 def module_name(path: Path) -> str:

@@ -10,7 +10,7 @@ from test_camera import CAMERA_URDF, FACE_X, RED_BOX
 from test_camera_topics import FakePublisher
 
 from turtle_sim_ode.models.lights import SUN
-from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.ros import camera_topics, periodic
 from turtle_sim_ode.sensors.camera import CameraSensor
 from turtle_sim_ode.world.simulation import Simulation

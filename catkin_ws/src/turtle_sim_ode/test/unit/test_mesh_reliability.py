@@ -23,7 +23,7 @@ from workspace_testing.timing import assert_within, timed
 from turtle_sim_ode.models.includes import MAX_INCLUDE_DEPTH, resolve_includes
 from turtle_sim_ode.models.meshes import MAX_TRIANGLES, read_mesh
 from turtle_sim_ode.models.resources import ResourcePaths
-from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.sensors import scene as scene_module
 from turtle_sim_ode.sensors.laser import LaserScanner
@@ -190,13 +190,15 @@ def api(tmp_path, monkeypatch):
     gazebo_api = pytest.importorskip("turtle_sim_ode.ros.gazebo_api")
     import rospy
 
+    from turtle_sim_ode.ros import spawn
+
     class Registration:
         def __init__(self, *args, **kwargs) -> None:
             pass
 
     for name in ("Service", "Publisher", "Subscriber"):
         monkeypatch.setattr(rospy, name, Registration)
-    monkeypatch.setattr(gazebo_api, "known_topic_types", lambda: {})
+    monkeypatch.setattr(spawn, "known_topic_types", lambda: {})
     monkeypatch.setattr(gazebo_api, "PhysicsReconfigure", Registration)  # a dynamic_reconfigure server needs a master
     sim = Simulation()
     sim.resources = scratch_paths(tmp_path)

@@ -21,9 +21,10 @@ from test_sensors import LASER_URDF, beam, laser_config
 from turtle_sim_ode.models.includes import resolve_includes
 from turtle_sim_ode.models.meshes import read_mesh
 from turtle_sim_ode.models.resources import MAX_RESOURCE_BYTES, ResourceError, ResourcePaths, read_resource
-from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import Mesh, parse_urdf
+from turtle_sim_ode.models.description import Mesh
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.physics.trimesh import MeshGeom, quickstep_w
 from turtle_sim_ode.physics.world import seed_ode_random
 from turtle_sim_ode.sensors.camera import SKY_COLOR, CameraSensor

@@ -9,7 +9,9 @@ from turtle_sim_ode.models.builder import build_model
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.physics import ode_constants as oc
-from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams
+from turtle_sim_ode.physics.settings import PhysicsParams
+from turtle_sim_ode.physics.surfaces import SurfaceParams
+from turtle_sim_ode.physics.world import PhysicsWorld
 
 NO_GRAVITY = PhysicsParams(gravity=(0.0, 0.0, 0.0))
 BOX = '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'

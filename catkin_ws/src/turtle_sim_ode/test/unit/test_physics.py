@@ -5,7 +5,9 @@ import ode
 import pytest
 
 from turtle_sim_ode.physics import ode_constants as oc
-from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams, combine_surfaces
+from turtle_sim_ode.physics.settings import PhysicsParams
+from turtle_sim_ode.physics.surfaces import SurfaceParams, combine_surfaces
+from turtle_sim_ode.physics.world import PhysicsWorld
 
 
 @pytest.mark.parametrize(

@@ -7,7 +7,7 @@ import math
 import pytest
 from conftest import yaw_of
 
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.planar_move import PLANAR_MOVE, PlanarMoveRobot
 from turtle_sim_ode.world.simulation import Simulation

@@ -12,7 +12,7 @@ from conftest import PACKAGE_ROOT
 
 from turtle_sim_ode.control.plugin import RosControlConfig
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.ros.plugins import ADAPTERS, GROUPED, plugin_namespace
 from turtle_sim_ode.sensors.config import read_sdf_sensors
 from turtle_sim_ode.sensors.plugins import SENSOR_PLUGINS

@@ -17,7 +17,7 @@ from conftest import PACKAGE_ROOT
 
 from turtle_sim_ode.control.plugin import RosControlConfig
 from turtle_sim_ode.models.text import plugin_params
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.sensors.plugins import SENSOR_PLUGINS
 from turtle_sim_ode.world.plugins import MODEL_PLUGINS
 from turtle_sim_ode.world.plugins.ros_control import RosControlPluginConfig

@@ -5,7 +5,8 @@ from pathlib import Path
 import pytest
 from conftest import TURTLEBOT_URDF
 
-from turtle_sim_ode.models.urdf import GazeboPlugin, parse_urdf
+from turtle_sim_ode.models.description import GazeboPlugin
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.sensors.config import ImuNoise
 from turtle_sim_ode.world.plugins import DIFF_DRIVE, IMU, KOBUKI, P3D, find_body, read_plugins

@@ -6,12 +6,18 @@ import random
 import pytest
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
 
-from turtle_sim_ode.models.builder import build_model, compose, inverse, pose_transform, quat_from_rpy
-from turtle_sim_ode.models.sdf import PLANE_THICKNESS, Include, parse_sdf_model, parse_sdf_world
-from turtle_sim_ode.models.urdf import Box, GazeboSurface, Mesh, parse_urdf, Pose
+from turtle_sim_ode.models.builder import build_model
+from turtle_sim_ode.models.transforms import compose, inverse, pose_transform, quat_from_rpy
+from turtle_sim_ode.models.sdf import parse_sdf_model
+from turtle_sim_ode.models.sdf_parts import PLANE_THICKNESS
+from turtle_sim_ode.models.sdf_world import Include, parse_sdf_world
+from turtle_sim_ode.models.description import Box, GazeboSurface, Mesh, Pose
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.physics import ode_constants as oc
-from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld, SurfaceParams
+from turtle_sim_ode.physics.settings import PhysicsParams
+from turtle_sim_ode.physics.surfaces import SurfaceParams
+from turtle_sim_ode.physics.world import PhysicsWorld
 
 NO_GRAVITY = PhysicsParams(gravity=(0.0, 0.0, 0.0))
 WORLDS = PACKAGE_ROOT / "worlds"

@@ -10,7 +10,8 @@ import pytest
 from conftest import PACKAGE_ROOT, yaw_of
 
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin, parse_urdf
+from turtle_sim_ode.models.description import GazeboPlugin
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.ros.plugins.skid_steer_drive import covariance
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.skid_steer_drive import SKID_STEER_DRIVE, SkidSteerRobot

@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.ros.plugins.tricycle_drive import POSE_COVARIANCE, encoder_odometry
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.tricycle_drive import (

@@ -2,7 +2,8 @@
 import pytest
 from conftest import TURTLEBOT_URDF
 
-from turtle_sim_ode.models.urdf import Mesh, Cylinder, GazeboSurface, MAX_LINKS, parse_urdf, Sphere
+from turtle_sim_ode.models.description import Cylinder, GazeboSurface, Mesh, Sphere
+from turtle_sim_ode.models.urdf import MAX_LINKS, parse_urdf
 from turtle_sim_ode.models.text import ModelError
 
 INERTIA = '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'

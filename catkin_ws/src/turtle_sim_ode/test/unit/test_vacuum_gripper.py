@@ -15,9 +15,9 @@ from conftest import PACKAGE_ROOT
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from turtle_sim_ode.models.builder import quat_from_rpy
+from turtle_sim_ode.models.transforms import quat_from_rpy
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins import read_plugins
 from turtle_sim_ode.world.plugins.vacuum_gripper import (
     MAX_FORCE,

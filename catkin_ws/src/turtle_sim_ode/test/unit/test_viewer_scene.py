@@ -11,8 +11,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from visualization_msgs.msg import Marker
 
-from turtle_sim_ode.models.builder import Transform, compose, quat_multiply
-from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.transforms import Transform, compose, quat_multiply
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.ros.scene_markers import marker_of
 from turtle_sim_ode.ros.viewer_config import FIXED_FRAME, SCENE_TOPIC, rviz_config
 from turtle_sim_ode.world.simulation import Simulation

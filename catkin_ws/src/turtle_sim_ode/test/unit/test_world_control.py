@@ -6,12 +6,12 @@ import pytest
 from turtle_sim_ode.physics.trimesh import quickstep_w
 from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
 
-from turtle_sim_ode.models.builder import quat_rotate
-from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.transforms import quat_rotate
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.physics import ode_constants as oc
-from turtle_sim_ode.physics.world import PhysicsParams
-from turtle_sim_ode.world.control import CONTINUOUS, PRISMATIC, REVOLUTE
+from turtle_sim_ode.physics.settings import PhysicsParams
+from turtle_sim_ode.world.properties import CONTINUOUS, PRISMATIC, REVOLUTE
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.values import WorldError
 

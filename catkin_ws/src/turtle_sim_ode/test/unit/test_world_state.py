@@ -8,7 +8,7 @@ import math
 import pytest
 from conftest import PACKAGE_ROOT
 
-from turtle_sim_ode.models.sdf import parse_sdf_world
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
 from turtle_sim_ode.world.simulation import Simulation
 
 WORLD = (PACKAGE_ROOT / "test" / "worlds" / "saved_state.world").read_text()

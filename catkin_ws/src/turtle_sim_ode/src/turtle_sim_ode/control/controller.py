@@ -13,7 +13,7 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from turtle_sim_ode.control.hardware import JointData, RobotHW
 from turtle_sim_ode.control.params import Params
-from turtle_sim_ode.models.urdf import RobotModel
+from turtle_sim_ode.models.description import RobotModel
 
 Outgoing = Tuple[str, str, Any]
 

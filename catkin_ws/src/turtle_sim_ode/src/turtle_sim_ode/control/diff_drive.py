@@ -20,7 +20,7 @@ from turtle_sim_ode.control.controller import Controller, Throttle
 from turtle_sim_ode.control.hardware import RobotHW, clamp
 from turtle_sim_ode.control.params import ControllerError, Params
 from turtle_sim_ode.control.transmissions import VELOCITY
-from turtle_sim_ode.models.urdf import Cylinder, RobotModel, Sphere
+from turtle_sim_ode.models.description import Cylinder, RobotModel, Sphere
 
 
 @dataclass

@@ -15,7 +15,7 @@ from turtle_sim_ode.control.joint_controllers import urdf_joint_type
 from turtle_sim_ode.control.params import ControllerError, Params
 from turtle_sim_ode.control.pid import Pid, read_gains
 from turtle_sim_ode.control.transmissions import EFFORT
-from turtle_sim_ode.models.urdf import RobotModel
+from turtle_sim_ode.models.description import RobotModel
 
 
 class GripperActionController(Controller):

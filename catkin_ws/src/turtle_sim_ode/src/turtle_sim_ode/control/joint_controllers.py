@@ -13,7 +13,7 @@ from turtle_sim_ode.control.hardware import JointData, RobotHW, clamp, position_
 from turtle_sim_ode.control.params import ControllerError, Params
 from turtle_sim_ode.control.pid import Pid, read_gains
 from turtle_sim_ode.control.transmissions import EFFORT, POSITION
-from turtle_sim_ode.models.urdf import RobotModel
+from turtle_sim_ode.models.description import RobotModel
 
 STATE_EVERY = 10  # updates between two JointControllerState messages
 

@@ -8,7 +8,7 @@ from turtle_sim_ode.control.controller import Controller, Throttle
 from turtle_sim_ode.control.hardware import RobotHW
 from turtle_sim_ode.control.params import ControllerError, Params
 from turtle_sim_ode.control.transmissions import JOINT_STATE
-from turtle_sim_ode.models.urdf import RobotModel
+from turtle_sim_ode.models.description import RobotModel
 
 
 class JointStateController(Controller):

@@ -21,7 +21,7 @@ from turtle_sim_ode.control.joint_state import JointStateController
 from turtle_sim_ode.control.params import ControllerError, Params
 from turtle_sim_ode.control.transmissions import EFFORT, POSITION, VELOCITY, cpp_name
 from turtle_sim_ode.control.trajectory import JointTrajectoryController
-from turtle_sim_ode.models.urdf import RobotModel
+from turtle_sim_ode.models.description import RobotModel
 
 BEST_EFFORT, STRICT = 1, 2
 BASE_CLASS = "controller_interface::ControllerBase"

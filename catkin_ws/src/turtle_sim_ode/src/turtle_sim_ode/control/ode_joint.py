@@ -1,7 +1,7 @@
 """A model's ODE joint as the robot hardware simulation drives it."""
 from __future__ import annotations
 
-from turtle_sim_ode.models.builder import JointHandle
+from turtle_sim_ode.models.built import JointHandle
 from turtle_sim_ode.physics import ode_constants as oc
 
 

@@ -9,7 +9,7 @@ from typing import Callable, List, Mapping, Optional
 from turtle_sim_ode.control.hardware import DefaultRobotHWSim, SimJoint
 from turtle_sim_ode.control.manager import ControllerManager
 from turtle_sim_ode.control.transmissions import VELOCITY, read_transmissions
-from turtle_sim_ode.models.urdf import RobotModel
+from turtle_sim_ode.models.description import RobotModel
 
 ROBOT_SIM_TYPES = ("gazebo_ros_control/DefaultRobotHWSim",)
 # Timestamps within this of the control period count as a full period (sim time is a sum of float steps).

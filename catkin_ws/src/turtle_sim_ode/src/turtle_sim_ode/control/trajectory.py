@@ -26,7 +26,7 @@ from turtle_sim_ode.control.params import ControllerError, Params
 from turtle_sim_ode.control.pid import Pid, read_gains
 from turtle_sim_ode.control.spline import Segment, State
 from turtle_sim_ode.control.transmissions import POSITION
-from turtle_sim_ode.models.urdf import RobotModel
+from turtle_sim_ode.models.description import RobotModel
 
 SUCCESSFUL, INVALID_GOAL, INVALID_JOINTS = 0, -1, -2
 PATH_TOLERANCE_VIOLATED, GOAL_TOLERANCE_VIOLATED = -4, -5

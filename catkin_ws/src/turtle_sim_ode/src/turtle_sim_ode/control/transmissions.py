@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass
 from typing import List, Optional, Tuple
 
-from turtle_sim_ode.models.urdf import Joint, RobotModel
+from turtle_sim_ode.models.description import Joint, RobotModel
 
 EFFORT = "hardware_interface/EffortJointInterface"
 VELOCITY = "hardware_interface/VelocityJointInterface"

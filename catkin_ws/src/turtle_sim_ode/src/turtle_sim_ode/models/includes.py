@@ -12,9 +12,11 @@ from typing import List, Optional, Sequence, Set, Tuple
 
 from turtle_sim_ode.models.lights import SUN, Light, parse_light
 from turtle_sim_ode.models.resources import ResourcePaths
-from turtle_sim_ode.models.sdf import NEWEST_VERSION, Include, World, WorldModel, parse_included_model
+from turtle_sim_ode.models.sdf import parse_included_model
+from turtle_sim_ode.models.sdf_parts import NEWEST_VERSION
+from turtle_sim_ode.models.sdf_world import Include, World, WorldModel
 from turtle_sim_ode.models.text import ModelError, parse_xml
-from turtle_sim_ode.models.urdf import Pose
+from turtle_sim_ode.models.description import Pose
 
 
 def _version(text: Optional[str]) -> Tuple[int, ...]:

@@ -7,7 +7,8 @@ from typing import Dict, List
 
 import ode
 
-from turtle_sim_ode.models.builder import BuiltModel, JointHandle, quat_multiply, quat_rotate
+from turtle_sim_ode.models.built import BuiltModel, JointHandle
+from turtle_sim_ode.models.transforms import quat_multiply, quat_rotate
 
 
 def move_joints(model: BuiltModel, targets: Dict[str, float]) -> None:

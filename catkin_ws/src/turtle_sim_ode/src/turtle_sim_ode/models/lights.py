@@ -6,7 +6,7 @@ from dataclasses import dataclass, replace
 from typing import Iterable, Optional, Tuple
 from xml.etree.ElementTree import Element
 
-from turtle_sim_ode.models.builder import quat_from_rpy
+from turtle_sim_ode.models.transforms import quat_from_rpy
 from turtle_sim_ode.models.nested import read_pose
 from turtle_sim_ode.models.text import ModelError, child_text, read_number
 

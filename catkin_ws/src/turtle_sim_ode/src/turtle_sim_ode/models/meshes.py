@@ -26,7 +26,8 @@ import numpy
 
 from turtle_sim_ode.models.resources import ResourceError, ResourcePaths
 from turtle_sim_ode.models.text import ModelError, parse_xml
-from turtle_sim_ode.models.urdf import MAX_LENGTH, Mesh, RobotModel
+from turtle_sim_ode.models.description import Mesh, RobotModel
+from turtle_sim_ode.models.urdf import MAX_LENGTH
 from turtle_sim_ode.physics.trimesh import TriMeshData
 from turtle_sim_ode.physics.trimesh import available as trimesh_available
 

@@ -6,9 +6,10 @@ from __future__ import annotations
 
 from xml.etree.ElementTree import Element, SubElement
 
-from turtle_sim_ode.models.builder import Transform, compose, pose_transform, rpy_of
+from turtle_sim_ode.models.transforms import Transform, compose, pose_transform, rpy_of
 from turtle_sim_ode.models.text import ModelError, read_number
-from turtle_sim_ode.models.urdf import Pose, _offset
+from turtle_sim_ode.models.description import Pose
+from turtle_sim_ode.models.urdf import _offset
 
 # Deeper nesting than any description needs; a deeper one is refused.
 MAX_NESTING = 16

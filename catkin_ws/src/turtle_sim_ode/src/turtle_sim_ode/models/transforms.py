@@ -4,7 +4,7 @@ from __future__ import annotations
 import math
 from typing import Tuple
 
-from turtle_sim_ode.models.urdf import Pose
+from turtle_sim_ode.models.description import Pose
 
 Vec3 = Tuple[float, float, float]
 Quat = Tuple[float, float, float, float]  # (w, x, y, z) as ODE; only link_pose gives ROS's xyzw

@@ -1,10 +1,30 @@
 """Parse and validate a URDF string (no xacro, no file access) into plain dataclasses."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import Dict, List, Optional, Tuple, Union
 from xml.etree.ElementTree import Element
 
+from turtle_sim_ode.models.description import (
+    Box,
+    Collision,
+    Cylinder,
+    GazeboPlugin,
+    GazeboSurface,
+    Geometry,
+    Inertial,
+    Joint,
+    JointDynamics,
+    JointLimits,
+    Link,
+    Mesh,
+    Pose,
+    RobotModel,
+    SensorElement,
+    Sphere,
+    Vec3,
+    Visual,
+)
 from turtle_sim_ode.models.materials import (
     RGB,
     TRANSPARENT_SCRIPT_ALPHA,
@@ -15,11 +35,8 @@ from turtle_sim_ode.models.materials import (
     urdf_visual_color,
 )
 from turtle_sim_ode.models.text import ModelError, parse_xml, plugin_params, read_number, required_attribute
-from turtle_sim_ode.models.textures import MaterialScript
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.sanity import MAX_INERTIA, MAX_LENGTH, MAX_MASS, MIN_MASS
-
-Vec3 = Tuple[float, float, float]
 
 # Size limits of one model: a request beyond them is refused at once with the limit in the message, rather than
 # holding the world for seconds while it is built and slowing every step after (1000 colliding links resting on
@@ -28,8 +45,9 @@ MAX_LINKS = 1000
 MAX_JOINTS = 1000
 MAX_COLLISIONS = 1000
 MAX_VISUALS = 1000  # each is drawn by every camera, every frame
-# Magnitude limits: lengths (offsets, sizes) in m, masses in kg, inertia entries in kg m^2. Beyond them ODE's
-# collision grid or integrator overflows and aborts the whole process (offsets of 1e12 m, inertias of 1e300).
+# The parent link name of a joint that holds a model's root link to the world (SDF's <parent>world</parent>), and
+# a URDF root link of that name: the world frame (a fixed joint from it welds the robot where it was placed).
+WORLD_LINK = "world"
 JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic")
 # <gazebo reference="link"> contact tags -> GazeboSurface fields (Gazebo's ODE surface of the link's collisions).
 SURFACE_TAGS = {
@@ -44,151 +62,8 @@ SURFACE_TAGS = {
     "slip2": "slip2",
 }
 
-
-@dataclass(frozen=True)
-class Pose:
-    """URDF <origin>: translation and fixed-axis roll, pitch, yaw."""
-
-    xyz: Vec3 = (0.0, 0.0, 0.0)
-    rpy: Vec3 = (0.0, 0.0, 0.0)
-
-
-@dataclass(frozen=True)
-class Inertial:
-    mass: float
-    origin: Pose
-    ixx: float
-    ixy: float
-    ixz: float
-    iyy: float
-    iyz: float
-    izz: float
-
-    def matrix(self) -> Tuple[Vec3, Vec3, Vec3]:
-        return ((self.ixx, self.ixy, self.ixz), (self.ixy, self.iyy, self.iyz), (self.ixz, self.iyz, self.izz))
-
-
-@dataclass(frozen=True)
-class Box:
-    size: Vec3
-
-
-@dataclass(frozen=True)
-class Cylinder:
-    """Axis along the collision frame's z, like ODE's cylinder."""
-
-    radius: float
-    length: float
-
-
-@dataclass(frozen=True)
-class Sphere:
-    radius: float
-
-
-@dataclass(frozen=True)
-class Mesh:
-    """A collision mesh: ``uri`` as the model text gives it (package://, model://, file:// or a path), scaled per
-    axis. The parsers open no file: models.meshes.load_meshes fills ``vertices`` and ``faces`` (ODE trimesh data,
-    scaled) from files under the ROS package path and model path before the model is built."""
-
-    uri: str
-    scale: Vec3 = (1.0, 1.0, 1.0)
-    vertices: Optional[Tuple[Vec3, ...]] = field(default=None, compare=False, repr=False)
-    faces: Optional[Tuple[Tuple[int, int, int], ...]] = field(default=None, compare=False, repr=False)
-    # ODE's trimesh data of them (physics.trimesh.TriMeshData), built with them outside the world lock.
-    prepared: Optional[object] = field(default=None, compare=False, repr=False)
-
-
-Geometry = Union[Box, Cylinder, Sphere, Mesh]
 # The <geometry> shapes a URDF visual may have that the cameras draw (others are skipped with a warning).
 VISUAL_SHAPES = ("box", "cylinder", "sphere", "mesh")
-
-
-# The parent link name of a joint that holds a model's root link to the world (SDF's <parent>world</parent>), and
-# a URDF root link of that name: the world frame (a fixed joint from it welds the robot where it was placed).
-WORLD_LINK = "world"
-
-
-@dataclass(frozen=True)
-class Collision:
-    name: str
-    origin: Pose
-    geometry: Geometry
-    # An SDF <plane> (``geometry`` is its thin box): Gazebo's ODE collides with the whole plane, the box's top face.
-    plane: bool = False
-
-
-@dataclass(frozen=True)
-class Visual:
-    """What the cameras draw of a link (Gazebo's cameras see visuals, not collisions): ``origin`` in the link frame,
-    ``color`` from its own material (None: Gazebo's default grey), ``texture`` a material script's with an image
-    (models.textures). A mesh's file is read by the cameras."""
-
-    name: str
-    origin: Pose
-    geometry: Geometry
-    color: Optional[RGB] = None
-    texture: Optional[MaterialScript] = None
-    alpha: float = 1.0  # opacity (URDF rgba alpha; SDF diffuse alpha and <transparency>)
-
-
-@dataclass
-class Link:
-    name: str
-    inertial: Optional[Inertial] = None
-    collisions: List[Collision] = field(default_factory=list)
-    visuals: List[Visual] = field(default_factory=list)
-
-    @property
-    def color(self) -> Optional[RGB]:
-        """The first visual colour (None: Gazebo's default grey): the cameras draw the link's collisions in it where
-        its visuals cannot be drawn."""
-        return next((visual.color for visual in self.visuals if visual.color is not None), None)
-
-
-@dataclass(frozen=True)
-class JointLimits:
-    lower: float = 0.0
-    upper: float = 0.0
-    effort: float = 0.0
-    velocity: float = 0.0
-
-
-@dataclass(frozen=True)
-class JointDynamics:
-    damping: float = 0.0
-    friction: float = 0.0
-
-
-@dataclass(frozen=True)
-class Joint:
-    name: str
-    type: str
-    parent: str
-    child: str
-    origin: Pose = Pose()
-    axis: Vec3 = (1.0, 0.0, 0.0)
-    limits: Optional[JointLimits] = None
-    dynamics: JointDynamics = JointDynamics()
-    # SDF <joint><pose>: the joint frame (anchor, and the frame ``axis`` is in) relative to
-    # the child link frame. URDF joint frames are the child link frame.
-    frame: Pose = Pose()
-
-
-@dataclass(frozen=True)
-class GazeboSurface:
-    """<gazebo reference="link"> contact tags; None where the URDF says nothing."""
-
-    mu1: Optional[float] = None
-    mu2: Optional[float] = None
-    kp: Optional[float] = None
-    kd: Optional[float] = None
-    max_vel: Optional[float] = None
-    min_depth: Optional[float] = None
-    fdir1: Optional[Vec3] = None
-    slip1: Optional[float] = None
-    slip2: Optional[float] = None
 
 
 def read_surface_value(field_name: str, text: Optional[str], what: str) -> Union[float, Vec3]:
@@ -203,46 +78,6 @@ def read_surface_value(field_name: str, text: Optional[str], what: str) -> Union
     if field_name == "kp" and value <= 0:
         raise ModelError(f"{what} must be > 0, got '{text}'")
     return value
-
-
-@dataclass(frozen=True)
-class GazeboPlugin:
-    filename: str
-    name: str
-    params: Dict[str, str]
-
-
-@dataclass(frozen=True)
-class SensorElement:
-    """A ``<sensor>`` as the model text has it, handed on for the sensors layer to read: a URDF's from a
-    ``<gazebo reference="link">`` block (``link`` None where the block names none), an SDF's from its ``<link>``."""
-
-    link: Optional[str]
-    element: Element
-
-
-@dataclass
-class RobotModel:
-    name: str
-    links: Dict[str, Link]
-    joints: Dict[str, Joint]
-    root: str
-    surfaces: Dict[str, GazeboSurface] = field(default_factory=dict)
-    plugins: List[GazeboPlugin] = field(default_factory=list)
-    sensors: List[SensorElement] = field(default_factory=list)
-    warnings: List[str] = field(default_factory=list)
-    # SDF: the root link's pose in the model frame, which build_model places at its pose.
-    root_pose: Pose = Pose()
-    # SDF <static>: collision geoms fixed in the world, no bodies.
-    static: bool = False
-    # The folder of the file the model came from: its relative mesh names are read against it.
-    base: Optional[str] = None
-    # The URDF's <transmission> elements, for gazebo_ros_control (control.transmissions reads them).
-    transmissions: List[Element] = field(default_factory=list)
-
-    def plugin(self, filename: str) -> Optional[GazeboPlugin]:
-        """The first plugin loaded from ``filename`` (e.g. 'libgazebo_ros_kobuki.so')."""
-        return next((p for p in self.plugins if p.filename == filename), None)
 
 
 # --- small parsing helpers ------------------------------------------------------

@@ -16,7 +16,7 @@ import ode
 
 LIBRARY = "libturtle_sim_ode_contacts.so"
 
-# As physics.world.ContactSurface: (mode, fdir_side, adjust_depth, mu, mu2, soft_erp, soft_cfm, slip1, slip2,
+# As physics.surfaces.ContactSurface: (mode, fdir_side, adjust_depth, mu, mu2, soft_erp, soft_cfm, slip1, slip2,
 # min_depth, depth_cap, surface_layer, fdir1 x, y, z).
 PairSurface = Tuple[int, int, int, float, float, float, float, float, float, float, float, float, float, float, float]
 # (geom id, other geom id, position, normal from other towards geom, depth)

@@ -1,44 +1,18 @@
-"""ODE world with a ground plane, Gazebo-style contact surfaces and a fixed step."""
+"""ODE world: collision spaces and geoms, a ground plane, the contacts of each step and a fixed-step clock."""
 from __future__ import annotations
 
 import ctypes
-import math
-from dataclasses import dataclass, field, replace
-from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequence, Set, Tuple
+from typing import Callable, Dict, Iterable, List, Optional, Sequence, Set, Tuple
 
 import ode
 
-from turtle_sim_ode.physics import ode_constants as oc
-from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.contact_kernel import ContactKernel
+from turtle_sim_ode.physics.contacts import ContactWatch, WatchedContact, add_contact_joints
+from turtle_sim_ode.physics.settings import PhysicsParams, configure_world
+from turtle_sim_ode.physics.surfaces import ContactSurface, PairContact, SurfaceParams, combine_surfaces, ground_surface
 from turtle_sim_ode.physics.trimesh import LIBODE as _LIBODE
 from turtle_sim_ode.physics.trimesh import collide as _collide
-from turtle_sim_ode.physics.trimesh import remove_geom, set_quickstep_w
-
-SOLVERS = ("quick", "world")
-# The softest contact stiffness (N/m): softer holds no mass up, and its inverse overflows the contact arithmetic.
-MIN_KP = 1.0
-# Gravity (m/s² per axis) beyond which resting bodies tunnel through the ground and fall until ODE aborts (1e6 does).
-MAX_GRAVITY = 1e3
-
-# Gazebo's ODE contact: axis-dependent friction pyramid scaled by the normal force,
-# spring-damper softness from kp/kd.
-_CONTACT_MODE = oc.CONTACT_MU2 | oc.CONTACT_SOFT_ERP | oc.CONTACT_SOFT_CFM | oc.CONTACT_APPROX1
-
-# How a geom pair's contacts are made, as set on every ode.Contact of the pair (the kernel's TsoPairSurface):
-# (mode, fdir_side, adjust_depth, mu, mu2, soft_erp, soft_cfm, slip1, slip2, min_depth, depth_cap, surface_layer,
-#  fdir1 x, y, z). ``fdir_side`` names the geom whose fdir1 (in its own frame) is the first friction direction
-# (0 none, 1 the pair's first geom, 2 its second); with ``adjust_depth`` each contact's depth is made
-# min(depth - min_depth, depth_cap) + surface_layer, so that ODE (which subtracts the world's surface layer and caps
-# the push-out at the world's max correcting velocity) acts with the pair's own min_depth and max_vel.
-ContactSurface = Tuple[
-    int, int, int, float, float, float, float, float, float, float, float, float, float, float, float
-]
-# How a geom pair's contacts are made: surface, and whether a line contact is merged.
-PairContact = Tuple[ContactSurface, bool]
-# Where every component of normal x fdir1 is below this, Gazebo's ODE falls back to its own friction directions
-# (gazebo-classic deps/opende/src/joints/contact.cpp, dxJointContact::getInfo2: _dequal(t2, 0)).
-PARALLEL_FDIR1_TOLERANCE = 1e-6
+from turtle_sim_ode.physics.trimesh import remove_geom
 
 
 # PyODE frees an ode.World's C object when the wrapper dies, and dWorldDestroy frees
@@ -57,254 +31,6 @@ def seed_ode_random(seed: int = 0) -> bool:
         return False
     _LIBODE.dRandSetSeed(ctypes.c_ulong(seed))
     return True
-
-
-def _finite(value: float) -> bool:
-    return isinstance(value, (int, float)) and math.isfinite(value)
-
-
-@dataclass(frozen=True)
-class SurfaceParams:
-    """Contact surface of one geom, as Gazebo's ODE surface of a collision: friction (<mu1> <mu2> <fdir1> <slip1>
-    <slip2>) and contact (<kp> <kd> <minDepth> <maxVel>). ``min_depth`` and ``max_vel`` None: the geom leaves the
-    world's contact_surface_layer and contact_max_correcting_vel in force (Gazebo sets them on the link's body;
-    body-less geoms take no part, as in Gazebo where static links have no body)."""
-
-    mu: float = 1.0
-    mu2: float = 1.0
-    kp: float = 1e12
-    kd: float = 1.0
-    min_depth: Optional[float] = None
-    max_vel: Optional[float] = None
-    fdir1: Tuple[float, float, float] = (0.0, 0.0, 0.0)
-    slip1: float = 0.0
-    slip2: float = 0.0
-
-    def validate(self, name: str = "surface") -> None:
-        """Raise ValueError naming the first bad field."""
-        for attr in ("mu", "mu2", "kd", "slip1", "slip2", "min_depth", "max_vel"):
-            value = getattr(self, attr)
-            if value is None and attr in ("min_depth", "max_vel"):
-                continue
-            if not _finite(value) or value < 0:
-                raise ValueError(f"{name}.{attr} must be finite and >= 0, got {value!r}")
-        if not _finite(self.kp) or self.kp < MIN_KP:
-            raise ValueError(f"{name}.kp must be finite and >= {MIN_KP:g} N/m, got {self.kp!r}")
-        if len(self.fdir1) != 3 or not all(_finite(v) for v in self.fdir1):
-            raise ValueError(f"{name}.fdir1 must be 3 finite numbers, got {self.fdir1!r}")
-
-    def without_body(self) -> "SurfaceParams":
-        """This surface on a body-less geom: no min_depth or max_vel (they belong to a body in Gazebo)."""
-        if self.min_depth is None and self.max_vel is None:
-            return self
-        return replace(self, min_depth=None, max_vel=None)
-
-
-def combine_surfaces(
-    a: SurfaceParams,
-    b: SurfaceParams,
-    time_step: float,
-    surface_layer: float = 0.0,
-    max_correcting_vel: float = math.inf,
-) -> ContactSurface:
-    """Gazebo's rule (ODEPhysics::Collide and its ODE's contact joint): min friction and slip, springs in series,
-    dampers in parallel; fdir1 of the geom with the smaller mu1 that has one; min_depth and max_vel the smaller of
-    the geoms that set them (max_vel at most the world's), else the world's ``surface_layer`` and
-    ``max_correcting_vel``."""
-    kp = 1.0 / (1.0 / a.kp + 1.0 / b.kp)
-    kd = a.kd + b.kd
-    denominator = time_step * kp + kd
-    erp, cfm = time_step * kp / denominator, 1.0 / denominator
-    slip1, slip2 = min(a.slip1, b.slip1), min(a.slip2, b.slip2)
-    mode = _CONTACT_MODE | (oc.CONTACT_SLIP1 if slip1 > 0 else 0) | (oc.CONTACT_SLIP2 if slip2 > 0 else 0)
-    zero = (0.0, 0.0, 0.0)
-    side, fdir1 = 0, zero
-    if a.fdir1 != zero:
-        side, fdir1 = 1, a.fdir1
-    if b.fdir1 != zero and (a.fdir1 == zero or a.mu > b.mu):
-        side, fdir1 = 2, b.fdir1
-    depths = [s.min_depth for s in (a, b) if s.min_depth is not None]
-    speeds = [s.max_vel for s in (a, b) if s.max_vel is not None]
-    min_depth = min(depths) if depths else surface_layer
-    max_vel = min(min(speeds), max_correcting_vel) if speeds else max_correcting_vel
-    # ODE pushes out at (erp / time_step) * depth, capped at its world-wide max correcting velocity: a pair's lower
-    # cap is a cap on the depth it sees.
-    depth_cap = max_vel * time_step / erp if max_vel < max_correcting_vel else math.inf
-    adjust = int(bool(depths or speeds))
-    return (
-        mode,
-        side,
-        adjust,
-        min(a.mu, b.mu),
-        min(a.mu2, b.mu2),
-        erp,
-        cfm,
-        slip1,
-        slip2,
-        min_depth,
-        depth_cap,
-        surface_layer,
-        float(fdir1[0]),
-        float(fdir1[1]),
-        float(fdir1[2]),
-    )
-
-
-def _ground_surface(surface: SurfaceParams) -> SurfaceParams:
-    """The ground plane's surface: no body (so no min_depth, max_vel) and no frame to turn an fdir1 by."""
-    return replace(surface.without_body(), fdir1=(0.0, 0.0, 0.0))
-
-
-def configure_world(world: ode.World, params: "PhysicsParams") -> None:
-    """Gravity and the solver's world-wide settings of ``params`` on an ODE world."""
-    world.setGravity(tuple(params.gravity))
-    world.setERP(params.erp)
-    world.setCFM(params.cfm)
-    world.setQuickStepNumIterations(params.solver_iterations)
-    world.setContactMaxCorrectingVel(params.contact_max_correcting_vel)
-    world.setContactSurfaceLayer(params.contact_surface_layer)
-    set_quickstep_w(world, params.sor)
-
-
-@dataclass
-class PhysicsParams:
-    """World-wide solver and contact settings."""
-
-    time_step: float = 0.001
-    solver: str = "quick"
-    solver_iterations: int = 50
-    gravity: Tuple[float, float, float] = (0.0, 0.0, -9.81)
-    erp: float = 0.2
-    cfm: float = 1e-5
-    max_contacts: int = 4
-    # Caps how fast penetration is pushed out: higher bounces (a 2 m/s impact rebounds
-    # at up to this speed), lower lets soft contacts sink under load (force <= cap / cfm).
-    contact_max_correcting_vel: float = 0.1
-    contact_surface_layer: float = 0.0001
-    # The quick step's successive over-relaxation factor (Gazebo's <sor>, ODE's dWorldSetQuickStepW; ODE's own 1.3).
-    sor: float = 1.3
-    default_surface: SurfaceParams = field(default_factory=SurfaceParams)
-    # Gazebo's ground_plane model surface.
-    ground_surface: SurfaceParams = field(default_factory=lambda: SurfaceParams(mu=100.0, mu2=50.0))
-
-    def validate(self) -> None:
-        """Raise ValueError naming the bad field and its value."""
-        if not _finite(self.time_step) or not 0 < self.time_step <= 0.1:
-            raise ValueError(f"time_step must be in (0, 0.1] s, got {self.time_step!r}")
-        if self.time_step < sanity.MIN_TIME_STEP:
-            raise ValueError(
-                f"time_step must be at least {sanity.MIN_TIME_STEP:g} s (shorter steps cannot keep /clock moving at "
-                f"any useful rate), got {self.time_step!r}"
-            )
-        if self.solver not in SOLVERS:
-            raise ValueError(f"solver must be one of {SOLVERS}, got {self.solver!r}")
-        if (
-            not isinstance(self.solver_iterations, int)
-            or isinstance(self.solver_iterations, bool)
-            or not 1 <= self.solver_iterations <= 1000
-        ):
-            raise ValueError(f"solver_iterations must be an integer in 1..1000, got {self.solver_iterations!r}")
-        if len(self.gravity) != 3 or not all(_finite(g) and abs(g) <= MAX_GRAVITY for g in self.gravity):
-            raise ValueError(f"gravity must be 3 finite numbers within ±{MAX_GRAVITY:g} m/s², got {self.gravity!r}")
-        if not _finite(self.erp) or not 0 <= self.erp <= 1:
-            raise ValueError(f"erp must be in [0, 1], got {self.erp!r}")
-        if not _finite(self.cfm) or self.cfm < 0:
-            raise ValueError(f"cfm must be finite and >= 0, got {self.cfm!r}")
-        if self.cfm > sanity.MAX_CFM:
-            raise ValueError(f"cfm must be at most {sanity.MAX_CFM:g}, got {self.cfm!r}")
-        if (
-            not isinstance(self.max_contacts, int)
-            or isinstance(self.max_contacts, bool)
-            or not 1 <= self.max_contacts <= 64
-        ):
-            raise ValueError(f"max_contacts must be an integer in 1..64, got {self.max_contacts!r}")
-        for name in ("contact_max_correcting_vel", "contact_surface_layer"):
-            value = getattr(self, name)
-            if not _finite(value) or value < 0:
-                raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
-        if not _finite(self.sor) or not 0 < self.sor <= 2:
-            raise ValueError(f"sor must be in (0, 2], got {self.sor!r}")
-        self.default_surface.validate("default_surface")
-        self.ground_surface.validate("ground_surface")
-
-
-class WatchedContact(NamedTuple):
-    """One contact point touching a watched geom: ``normal`` points from ``other`` towards
-    ``geom`` (moving ``geom`` along it by ``depth`` separates them)."""
-
-    geom: ode.GeomObject
-    other: ode.GeomObject
-    position: Tuple[float, float, float]
-    normal: Tuple[float, float, float]
-    depth: float
-
-
-class ContactWatch:
-    """Contacts touching ``geoms`` during the last step (see ``PhysicsWorld.watch_contacts``).
-
-    ``contacts`` is a new list after every step (the ODE contact points as found, before
-    contact joints are made from them); ground contacts are included (``other`` is
-    ``PhysicsWorld.ground``).
-    """
-
-    def __init__(self, geoms: Iterable[ode.GeomObject]) -> None:
-        self.geoms = frozenset(geoms)
-        self._contacts: List[WatchedContact] = []
-        # Set when the step's contacts are still in the contact kernel: read on demand, since most steps'
-        # contacts are never asked for (sensors read at their own rates).
-        self._fill: Optional[Callable[[], None]] = None
-
-    @property
-    def contacts(self) -> List[WatchedContact]:
-        if self._fill is not None:
-            self._fill()
-        return self._contacts
-
-
-ContactGeom = Tuple[Tuple[float, float, float], Tuple[float, float, float], float]
-
-
-def _merge_line_contact(contacts: Sequence[ode.Contact]) -> Tuple[Sequence[ode.Contact], Optional[ContactGeom]]:
-    """Replace the two end points of a line contact by its centre of pressure (returned with its point).
-
-    A cylinder lying on a surface touches it along a line, but ODE reports only the
-    line's two ends. Their friction scrubs against each other when the cylinder pivots:
-    a wheel pair turning in place then turns 6.5 % slower than commanded, because the
-    robot settles where one end point sticks. One contact at the centre of pressure of
-    the (linear, as for a spring foundation) pressure profile pivots freely.
-    """
-    first, second = contacts
-    (x1, y1, z1), normal, depth1, _, _ = first.getContactGeomParams()
-    (x2, y2, z2), (nx2, ny2, nz2), depth2, _, _ = second.getContactGeomParams()
-    if normal[0] * nx2 + normal[1] * ny2 + normal[2] * nz2 < 0.999:
-        return contacts, None  # not one flat line contact
-    total = depth1 + depth2
-    # Centroid of a trapezoid of heights depth1, depth2, as a fraction from pos1.
-    t = (depth1 + 2.0 * depth2) / (3.0 * total) if total > 0 else 0.5
-    # Set without its geoms (PyODE then leaves them null): a contact joint never reads them, and PyODE takes
-    # four times as long to set them (every wheel, every step).
-    merged = ((x1 + t * (x2 - x1), y1 + t * (y2 - y1), z1 + t * (z2 - z1)), normal, depth1 + t * (depth2 - depth1))
-    first.setContactGeomParams(*merged)
-    return (first,), merged  # its geoms are null now: PyODE could not read it back
-
-
-def _friction_direction(
-    rotation: Sequence[float], fdir1: Tuple[float, float, float], normal: Sequence[float]
-) -> Optional[Tuple[float, float, float]]:
-    """``fdir1`` (in a geom's frame; ``rotation`` its world rotation, row-major) turned into the world and handed to
-    ODE as it is, neither projected onto the contact plane nor normalised, as gazebo-classic's ODEPhysics::Collide
-    does. ODE's contact joint then takes it as the first friction direction and normal x fdir1 as the second: a
-    wheel's fdir1 "1 0 0" turns with the wheel, so its friction rows tilt and shrink as it rolls, in Gazebo and here.
-    None where normal x fdir1 vanishes: Gazebo's ODE then falls back to dPlaneSpace, as stock ODE does without
-    dContactFDir1. contact_kernel.c's friction_direction, op for op."""
-    x, y, z = fdir1
-    wx = rotation[0] * x + rotation[1] * y + rotation[2] * z
-    wy = rotation[3] * x + rotation[4] * y + rotation[5] * z
-    wz = rotation[6] * x + rotation[7] * y + rotation[8] * z
-    cross = (normal[1] * wz - normal[2] * wy, normal[2] * wx - normal[0] * wz, normal[0] * wy - normal[1] * wx)
-    if all(abs(c) <= PARALLEL_FDIR1_TOLERANCE for c in cross):
-        return None
-    return (wx, wy, wz)
 
 
 class PhysicsWorld:
@@ -341,7 +67,7 @@ class PhysicsWorld:
         self._steps = 0
         self._static_space: Optional[ode.SpaceBase] = None
         self._self_colliding: List[ode.SpaceBase] = []
-        self._surfaces: Dict[ode.GeomObject, SurfaceParams] = {self.ground: _ground_surface(p.ground_surface)}
+        self._surfaces: Dict[ode.GeomObject, SurfaceParams] = {self.ground: ground_surface(p.ground_surface)}
         self._has_ground = True
         self._ground_given: Optional[SurfaceParams] = None  # the surface of the model that placed it
         # (geom, body, contact) of every dynamic geom, tested against the ground.
@@ -423,7 +149,7 @@ class PhysicsWorld:
         self._kernel_stale = True
 
     def _set_ground_surface(self, surface: SurfaceParams) -> None:
-        self._surfaces[self.ground] = _ground_surface(surface)
+        self._surfaces[self.ground] = ground_surface(surface)
         for pair in [pair for pair in self._pair_cache if self.ground in pair]:
             del self._pair_cache[pair]
         self._kernel_stale = True
@@ -619,7 +345,9 @@ class PhysicsWorld:
             if contacts:
                 if ground_watched or geom in watched:  # a bumper's watch leaves the wheels' contacts alone
                     self._record_contacts(contacts, ground, geom)
-                self._add_contacts(contacts, None, body, pair, ground, geom)
+                add_contact_joints(
+                    self.world, self._contact_joints, self.params.max_contacts, contacts, None, body, pair, ground, geom
+                )
         if self.space.getNumGeoms() > 1:
             self.space.collide(None, self._near)
         for space in self._self_colliding:
@@ -638,7 +366,17 @@ class PhysicsWorld:
         if contacts:
             if self._watched:
                 self._record_contacts(contacts, geom1, geom2)
-            self._add_contacts(contacts, body1, body2, self._pair_contact(geom1, geom2), geom1, geom2)
+            add_contact_joints(
+                self.world,
+                self._contact_joints,
+                self.params.max_contacts,
+                contacts,
+                body1,
+                body2,
+                self._pair_contact(geom1, geom2),
+                geom1,
+                geom2,
+            )
 
     def _combine(self, a: SurfaceParams, b: SurfaceParams) -> ContactSurface:
         p = self.params
@@ -655,46 +393,3 @@ class PhysicsWorld:
             )
             self._pair_cache[key] = pair
         return pair
-
-    def _add_contacts(
-        self,
-        contacts: Sequence[ode.Contact],
-        body1: Optional[ode.Body],
-        body2: Optional[ode.Body],
-        pair: PairContact,
-        geom1: ode.GeomObject,
-        geom2: ode.GeomObject,
-    ) -> None:
-        """One contact joint per point (as contact_kernel.c's add_contacts, step for step)."""
-        surface, merge_line = pair
-        mode, side, adjust, mu, mu2, erp, cfm, slip1, slip2, min_depth, depth_cap, layer, fx, fy, fz = surface
-        merged: Optional[ContactGeom] = None
-        if merge_line and len(contacts) == 2:
-            contacts, merged = _merge_line_contact(contacts)
-        elif len(contacts) > self.params.max_contacts:
-            contacts = contacts[: self.params.max_contacts]
-        world, keep = self.world, self._contact_joints.append
-        for contact in contacts:
-            contact_mode = mode
-            if adjust or side:
-                position, normal, depth = merged if merged is not None else contact.getContactGeomParams()[:3]
-                if adjust:
-                    depth = depth - min_depth
-                    if depth > depth_cap:
-                        depth = depth_cap
-                    contact.setContactGeomParams(position, normal, depth + layer)
-                if side:
-                    direction = _friction_direction((geom1 if side == 1 else geom2).getRotation(), (fx, fy, fz), normal)
-                    if direction is not None:
-                        contact_mode |= oc.CONTACT_FDIR1
-                        contact.setFDir1(direction)
-            contact.setMode(contact_mode)
-            contact.setMu(mu)
-            contact.setMu2(mu2)
-            contact.setSoftERP(erp)
-            contact.setSoftCFM(cfm)
-            contact.setSlip1(slip1)
-            contact.setSlip2(slip2)
-            joint = ode.ContactJoint(world, None, getattr(contact, "ode_contact", contact))
-            joint.attach(body1, body2)
-            keep(joint)

@@ -21,11 +21,12 @@ from rospy.impl import simtime
 from tf2_msgs.msg import TFMessage
 from turtle_sim_ode_msgs.srv import StepSimulation, StepSimulationRequest, StepSimulationResponse
 
-from turtle_sim_ode.models.sdf import parse_sdf_world
-from turtle_sim_ode.models.urdf import Pose
+from turtle_sim_ode.models.sdf_world import parse_sdf_world
+from turtle_sim_ode.models.description import Pose
 from turtle_sim_ode.ros.resource_paths import resource_paths
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.ros.gazebo_api import MAX_RAYS_PER_MODEL, GazeboApi, TopicTypes, known_topic_types, summarise
+from turtle_sim_ode.ros.gazebo_api import GazeboApi
+from turtle_sim_ode.ros.spawn import MAX_RAYS_PER_MODEL, TopicTypes, known_topic_types, summarise
 from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
 from turtle_sim_ode.ros.performance import PerformanceMetricsPublisher
 from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, sim_stamp

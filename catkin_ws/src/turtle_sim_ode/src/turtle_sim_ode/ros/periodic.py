@@ -8,7 +8,7 @@ from typing import Any, Callable, List, Optional
 
 import rospy
 
-from turtle_sim_ode.models.builder import BuiltModel
+from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.ros.settings import SimulatorSettings
 from turtle_sim_ode.ros.wire import PackedPublisher, stamp_parts
 from turtle_sim_ode.world.plugins.p3d import find_body

@@ -8,7 +8,7 @@ from typing import Any, Dict, Mapping, Tuple
 from rosgraph.names import is_legal_base_name
 
 from turtle_sim_ode.models.urdf import MAX_LENGTH
-from turtle_sim_ode.physics.world import MAX_GRAVITY, PhysicsParams
+from turtle_sim_ode.physics.settings import MAX_GRAVITY, PhysicsParams
 from turtle_sim_ode.ros.pacing import pacing_problem
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 

@@ -15,8 +15,9 @@ from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from turtle_sim_ode.models.builder import BuiltModel, quat_matrix
+from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.models.lights import Light
+from turtle_sim_ode.models.transforms import quat_matrix
 from turtle_sim_ode.models.materials import GAZEBO_MATERIALS, RGB
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig

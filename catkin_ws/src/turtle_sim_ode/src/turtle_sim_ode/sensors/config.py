@@ -8,7 +8,8 @@ from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.sdf import parse_sdf_model
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
+from turtle_sim_ode.models.description import RobotModel
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.sensors.plugins import SENSOR_PLUGINS, SIMULATED_TYPES, WITHOUT_PLUGIN
 from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig

@@ -5,13 +5,8 @@ import random
 from dataclasses import dataclass, field
 from typing import List, Optional, Tuple
 
-from turtle_sim_ode.models.builder import (
-    BuiltModel,
-    Vec3,
-    quat_from_rpy,
-    quat_multiply,
-    quat_rotate,
-)
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Vec3, quat_from_rpy, quat_multiply, quat_rotate
 from turtle_sim_ode.sensors.plugins.imu import ImuNoise
 
 

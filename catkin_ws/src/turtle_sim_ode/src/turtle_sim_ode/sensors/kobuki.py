@@ -7,16 +7,11 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 import ode
 
-from turtle_sim_ode.models.builder import (
-    BuiltModel,
-    Quat,
-    Vec3,
-    compose,
-    inverse,
-    quat_rotate,
-)
-from turtle_sim_ode.models.urdf import RobotModel
-from turtle_sim_ode.physics.world import ContactWatch, PhysicsWorld
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Quat, Vec3, compose, inverse, quat_rotate
+from turtle_sim_ode.models.description import RobotModel
+from turtle_sim_ode.physics.contacts import ContactWatch
+from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.rays import ray_distance, world_geoms
 
 _NO_ROTATION: Quat = (1.0, 0.0, 0.0, 0.0)

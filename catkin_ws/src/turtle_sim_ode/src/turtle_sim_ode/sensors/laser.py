@@ -11,13 +11,8 @@ from typing import List, Optional, Sequence, Set
 
 import ode
 
-from turtle_sim_ode.models.builder import (
-    BuiltModel,
-    Transform,
-    compose,
-    quat_from_rpy,
-    quat_matrix,
-)
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Transform, compose, quat_from_rpy, quat_matrix
 from turtle_sim_ode.physics.trimesh import collide as mesh_aware_collide
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.plugins.laser import LaserConfig

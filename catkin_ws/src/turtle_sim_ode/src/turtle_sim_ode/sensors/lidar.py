@@ -9,7 +9,8 @@ from typing import List, Optional, Tuple
 
 import numpy as np
 
-from turtle_sim_ode.models.builder import BuiltModel, quat_matrix
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import quat_matrix
 from turtle_sim_ode.physics.trimesh import MeshGeom
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.mounted import MountedSensor

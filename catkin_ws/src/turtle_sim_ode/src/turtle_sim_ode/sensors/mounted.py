@@ -6,7 +6,8 @@ from typing import Any, Optional
 
 import numpy as np
 
-from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, quat_from_rpy
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Transform, compose, quat_from_rpy
 from turtle_sim_ode.physics.world import PhysicsWorld
 
 

@@ -13,7 +13,7 @@ import numpy as np
 import ode
 
 from turtle_sim_ode.physics.contact_kernel import find_library
-from turtle_sim_ode.models.urdf import Box, Cylinder, Geometry, Sphere
+from turtle_sim_ode.models.description import Box, Cylinder, Geometry, Sphere
 
 LIBRARY = "libturtle_sim_ode_rays.so"
 STRIDE = 20  # doubles per primitive row (see src/ray_kernel.c)

@@ -6,9 +6,7 @@ from typing import Callable, Iterator, Set
 
 import ode
 
-from turtle_sim_ode.models.builder import (
-    BuiltModel,
-)
+from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.physics.trimesh import collide
 from turtle_sim_ode.physics.world import PhysicsWorld
 

@@ -17,12 +17,13 @@ from typing import Dict, List, Mapping, Optional, Set, Tuple
 import numpy as np
 import ode
 
-from turtle_sim_ode.models.builder import BuiltModel, pose_transform, quat_matrix
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import pose_transform, quat_matrix
 from turtle_sim_ode.models.materials import DEFAULT_COLOR, RGB
 from turtle_sim_ode.models.meshes import MeshFiles, mesh_file, scaled_mesh
 from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.textures import MaterialScript, read_texture
-from turtle_sim_ode.models.urdf import Mesh, Visual
+from turtle_sim_ode.models.description import Mesh, Visual
 from turtle_sim_ode.physics.trimesh import MeshGeom
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.ray_kernel import STRIDE, MeshItem, mesh_pose, primitive_row, visual_row

@@ -6,8 +6,8 @@ from __future__ import annotations
 import math
 from typing import Callable, Optional
 
-from turtle_sim_ode.models.builder import JointHandle
-from turtle_sim_ode.models.urdf import JointLimits
+from turtle_sim_ode.models.built import JointHandle
+from turtle_sim_ode.models.description import JointLimits
 
 
 def truncated_effort(effort: float, rate: float, velocity_limit: float, effort_limit: float) -> float:

@@ -6,7 +6,8 @@ from typing import Dict, Sequence
 
 import ode
 
-from turtle_sim_ode.models.builder import BuiltModel, Quat, Vec3
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Quat, Vec3
 from turtle_sim_ode.models.joint_positions import move_joints
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, List, Tuple, TypedDict
 
-from turtle_sim_ode.models.builder import Vec3
+from turtle_sim_ode.models.transforms import Vec3
 
 QuatXYZW = Tuple[float, float, float, float]
 

@@ -13,7 +13,7 @@ from typing import List, Optional, Tuple
 
 from turtle_sim_ode.models.sdf import parse_sdf_model
 from turtle_sim_ode.models.text import ModelError, read_number
-from turtle_sim_ode.models.urdf import GazeboPlugin, RobotModel
+from turtle_sim_ode.models.description import GazeboPlugin, RobotModel
 
 RUBBLE = "libRubblePlugin.so"
 BOARD_LENGTH = (0.6096, 2.4384)  # m: 2 to 8 feet

@@ -6,18 +6,25 @@ import logging
 from dataclasses import dataclass
 from typing import Dict, List, Mapping, Optional, Protocol, Sequence, Tuple, Union
 
-from turtle_sim_ode.models.builder import BuiltModel, Transform, Vec3, build_model, compose, inverse, quat_from_rpy
+from turtle_sim_ode.models.builder import build_model
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Transform, Vec3, compose, inverse, quat_from_rpy
 from turtle_sim_ode.models.includes import resolve_includes, sun_lights
 from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.models.meshes import load_meshes, uses_meshes
 from turtle_sim_ode.models.resources import ResourcePaths
-from turtle_sim_ode.models.sdf import World, _rpy, parse_sdf_model
+from turtle_sim_ode.models.sdf import parse_sdf_model
+from turtle_sim_ode.models.sdf_world import World
+from turtle_sim_ode.models.transforms import rpy_of
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import RobotModel, parse_urdf
-from turtle_sim_ode.physics.world import PhysicsParams, PhysicsWorld
+from turtle_sim_ode.models.description import RobotModel
+from turtle_sim_ode.models.urdf import parse_urdf
+from turtle_sim_ode.physics.settings import PhysicsParams
+from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.sensors.config import model_sensors
 from turtle_sim_ode.sensors.scene import Scene
-from turtle_sim_ode.world.control import SCOPE, WORLD_FRAMES, WorldControl
+from turtle_sim_ode.world.control import WorldControl
+from turtle_sim_ode.world.entities import SCOPE, WORLD_FRAMES
 from turtle_sim_ode.world.lights import LightControl
 from turtle_sim_ode.world.plugins import DriveRobot, ModelPlugins, read_plugins
 from turtle_sim_ode.world.records import Load, QuatXYZW
@@ -187,7 +194,7 @@ class Simulation(WorldControl, LightControl):
         else:
             raise WorldError(f"pose must be (x, y, z, roll, pitch, yaw) or (position, quaternion), " f"got {pose!r}")
         (x, y, z), (qx, qy, qz, qw) = self.to_world(reference_frame, *given)
-        roll, pitch, yaw = _rpy((qw, qx, qy, qz))
+        roll, pitch, yaw = rpy_of((qw, qx, qy, qz))
         return (x, y, z, roll, pitch, yaw)
 
     def spawn_urdf(

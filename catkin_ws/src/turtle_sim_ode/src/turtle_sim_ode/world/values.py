@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any, Sequence, Tuple
 
-from turtle_sim_ode.models.builder import Quat, Vec3
+from turtle_sim_ode.models.transforms import Quat, Vec3
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.physics.sanity import MAX_FORCE, MAX_SPEED  # noqa: F401 (the request limits, for callers)
 

@@ -14,12 +14,13 @@ import os
 from dataclasses import dataclass, field
 from typing import Dict, Iterable, List, Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, pose_transform
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Transform, compose, pose_transform
 from turtle_sim_ode.models.materials import DEFAULT_COLOR, GAZEBO_MATERIALS
 from turtle_sim_ode.models.meshes import MeshFiles, mesh_file
 from turtle_sim_ode.models.resources import ResourcePaths
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import Box, Cylinder, Mesh, Sphere, Visual
+from turtle_sim_ode.models.description import Box, Cylinder, Mesh, Sphere, Visual
 
 Vec3 = Tuple[float, float, float]
 RGBA = Tuple[float, float, float, float]

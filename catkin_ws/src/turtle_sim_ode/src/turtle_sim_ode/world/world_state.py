@@ -9,7 +9,8 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Dict, List
 
-from turtle_sim_ode.models.builder import BuiltModel, Transform, compose, inverse, quat_from_rpy
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Transform, compose, inverse, quat_from_rpy
 from turtle_sim_ode.models.lights import Light
 from turtle_sim_ode.models.world_state import Six, WorldState
 from turtle_sim_ode.physics.world import PhysicsWorld

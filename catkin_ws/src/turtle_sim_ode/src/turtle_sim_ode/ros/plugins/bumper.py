@@ -8,7 +8,7 @@ from gazebo_msgs.msg import ContactsState, ContactState
 from geometry_msgs.msg import Point, Vector3, Wrench
 import rospy
 
-from turtle_sim_ode.models.builder import BuiltModel
+from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, publisher
 from turtle_sim_ode.ros.plugin_topics import own_tf_prefix, period, resolve_frame

@@ -11,7 +11,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Empty as EmptyMsg
 
-from turtle_sim_ode.models.builder import BuiltModel
+from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, subscriber, topic_prefix
 from turtle_sim_ode.ros.plugin_topics import (
     DIFF_DRIVE_POSE_COVARIANCE,

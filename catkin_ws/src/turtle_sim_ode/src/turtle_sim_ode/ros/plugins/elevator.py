@@ -14,7 +14,7 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, subscriber
 from turtle_sim_ode.ros.throttle import logwarn_every
 from turtle_sim_ode.ros.wire import release
-from turtle_sim_ode.world.control import SCOPE
+from turtle_sim_ode.world.entities import SCOPE
 from turtle_sim_ode.world.plugins.elevator import Elevator, ElevatorConfig
 
 _LEADING_INTEGER = re.compile(r"\s*([+-]?\d+)")

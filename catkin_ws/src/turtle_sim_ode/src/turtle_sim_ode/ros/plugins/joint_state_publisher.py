@@ -6,7 +6,7 @@ from typing import List
 import rospy
 from sensor_msgs.msg import JointState
 
-from turtle_sim_ode.models.builder import BuiltModel
+from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, topic_prefix
 from turtle_sim_ode.ros.plugin_topics import period
 from turtle_sim_ode.ros.wire import JointStatePacker, release

@@ -7,7 +7,7 @@ from typing import List
 import rospy
 from kobuki_msgs.msg import BumperEvent, CliffEvent, MotorPower, SensorState, WheelDropEvent
 
-from turtle_sim_ode.models.builder import BuiltModel
+from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, publisher, subscriber, topic_prefix
 from turtle_sim_ode.ros.plugin_topics import KOBUKI_JOINT_STATES_FRAME, period
 from turtle_sim_ode.ros.plugins.drive import DriveInterface

@@ -6,7 +6,8 @@ from typing import List
 import rospy
 from nav_msgs.msg import Odometry
 
-from turtle_sim_ode.models.builder import BuiltModel, quat_from_rpy, quat_multiply
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import quat_from_rpy, quat_multiply
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, topic_prefix
 from turtle_sim_ode.ros.plugin_topics import Vec3, own_tf_prefix, period, resolve_frame, rotate_inverse
 from turtle_sim_ode.ros.wire import OdometryPacker, release

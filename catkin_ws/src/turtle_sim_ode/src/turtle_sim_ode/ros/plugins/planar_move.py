@@ -10,7 +10,7 @@ from typing import List, Optional, Tuple
 import rospy
 from geometry_msgs.msg import Twist
 
-from turtle_sim_ode.models.builder import rpy_of
+from turtle_sim_ode.models.transforms import rpy_of
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic
 from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface, gazebo_drive_interfaces
 from turtle_sim_ode.ros.throttle import logwarn_every

@@ -12,7 +12,7 @@ from typing import List, Optional, Tuple
 import rospy
 from sensor_msgs.msg import JointState
 
-from turtle_sim_ode.models.builder import compose, inverse
+from turtle_sim_ode.models.transforms import compose, inverse
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic
 from turtle_sim_ode.ros.plugin_topics import Vec3, resolve_frame
 from turtle_sim_ode.ros.plugins.drive import GazeboDriveInterface, gazebo_drive_interfaces, yaw_frame_odometry

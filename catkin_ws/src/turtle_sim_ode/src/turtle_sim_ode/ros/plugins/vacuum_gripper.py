@@ -15,7 +15,7 @@ from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.ros.names import legal_name, shown
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher, plugin_topic, topic_prefix
 from turtle_sim_ode.ros.wire import release
-from turtle_sim_ode.world.control import SCOPE
+from turtle_sim_ode.world.entities import SCOPE
 from turtle_sim_ode.world.plugins.vacuum_gripper import VacuumGripper, VacuumGripperConfig
 
 _TRUE, _FALSE = b"\x01", b"\x00"  # std_msgs/Bool on the wire

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import List, Tuple
 from xml.etree.ElementTree import Element, SubElement
 
-from turtle_sim_ode.models.builder import compose, quat_from_rpy, rpy_of
+from turtle_sim_ode.models.transforms import compose, quat_from_rpy, rpy_of
 from turtle_sim_ode.models.text import child_text
 from turtle_sim_ode.sensors.plugins.camera import CameraConfig
 from turtle_sim_ode.sensors.plugins.camera import read as read_camera

@@ -8,9 +8,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Dict, List, Mapping, Optional, Protocol, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, JointHandle
+from turtle_sim_ode.models.built import BuiltModel, JointHandle
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.sensors.config import SensorBlocks
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 from turtle_sim_ode.world.plugins import (

@@ -6,9 +6,9 @@ import math
 from dataclasses import dataclass
 from typing import Dict, Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, JointHandle
+from turtle_sim_ode.models.built import BuiltModel, JointHandle
 from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.diff_drive import DiffDriveController, DiffDriveParams, WheelOdometry
 from turtle_sim_ode.world.plugins.tags import flag, number, text
 

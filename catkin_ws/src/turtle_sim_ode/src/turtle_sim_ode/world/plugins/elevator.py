@@ -22,9 +22,9 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Deque, List, Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, JointHandle
+from turtle_sim_ode.models.built import BuiltModel, JointHandle
 from turtle_sim_ode.models.text import ModelError
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.joint_effort import truncated_effort
 from turtle_sim_ode.world.plugins.tags import number, text
 

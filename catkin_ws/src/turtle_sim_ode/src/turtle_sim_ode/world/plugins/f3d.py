@@ -22,9 +22,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import List, Mapping, Optional, Sequence, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, Matrix3, Vec3, _rotated_inertia
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.inertia import rotated_inertia
+from turtle_sim_ode.models.transforms import Matrix3, Vec3
 from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.world.kinematics import cross
 from turtle_sim_ode.world.plugins.tags import text
@@ -94,7 +96,7 @@ class LinkForce:
         self._mass, self._inertia = mass.mass, mass.I
         start: List[Optional[tuple]] = [None]  # (force, torque, velocity, angular velocity, quaternion) at the start
 
-        def before_step() -> None:  # a closure: the world must not hold this object (see models.builder)
+        def before_step() -> None:  # a closure: the world must not hold this object (see models.built)
             start[0] = (
                 body.getForce(),
                 body.getTorque(),
@@ -114,7 +116,7 @@ class LinkForce:
         _, torque0, velocity0, spin0, orientation = self._start[0]
         velocity, spin = self._body.getLinearVel(), self._body.getAngularVel()
         force = tuple(self._mass * (velocity[i] - velocity0[i]) / time_step for i in range(3))
-        inertia = _rotated_inertia(orientation, self._inertia)
+        inertia = rotated_inertia(orientation, self._inertia)
         implicit = _implicit_gyroscopic(inertia, spin0, time_step)
         inverse = _inverse(inertia)  # a body's inertia is positive definite: never None
         explained = _times(inverse, [torque0[i] + implicit[i] for i in range(3)]) if inverse else (0.0, 0.0, 0.0)

@@ -7,9 +7,9 @@ import math
 from dataclasses import dataclass
 from typing import Mapping, Optional, Sequence, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel
+from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.world.plugins.tags import text
 

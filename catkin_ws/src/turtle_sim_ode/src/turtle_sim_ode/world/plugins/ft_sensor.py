@@ -20,9 +20,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, JointHandle, Vec3, quat_rotate
+from turtle_sim_ode.models.built import BuiltModel, JointHandle
+from turtle_sim_ode.models.transforms import Vec3, quat_rotate
 from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.kinematics import add, conjugate, cross, sub
 from turtle_sim_ode.world.plugins.tags import number, text
 

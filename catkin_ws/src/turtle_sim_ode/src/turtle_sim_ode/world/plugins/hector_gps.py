@@ -11,9 +11,9 @@ import random
 from dataclasses import dataclass, field
 from typing import Dict, Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel
+from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.models.text import read_number, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins.hector_sensor_model import ErrorModel, SensorError, Vec3, error_model
 from turtle_sim_ode.world.plugins.tags import flag, text
 

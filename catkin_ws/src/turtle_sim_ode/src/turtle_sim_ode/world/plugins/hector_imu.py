@@ -13,9 +13,10 @@ import random
 from dataclasses import dataclass, field
 from typing import Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, Quat, quat_from_rpy, quat_multiply, quat_rotate
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import Quat, quat_from_rpy, quat_multiply, quat_rotate
 from turtle_sim_ode.models.text import read_number, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins.hector_sensor_model import ErrorModel, SensorError, Vec3, error_model, vector_tag
 from turtle_sim_ode.world.plugins.tags import text
 

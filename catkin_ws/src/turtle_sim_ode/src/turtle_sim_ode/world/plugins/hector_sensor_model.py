@@ -9,7 +9,7 @@ from dataclasses import dataclass, replace
 from typing import Dict, Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.text import ModelError, read_number
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 
 Vec3 = Tuple[float, float, float]
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Mapping
 
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.sensors.plugins.imu import ImuConfig, imu_config
 
 IMU = "libgazebo_ros_imu.so"

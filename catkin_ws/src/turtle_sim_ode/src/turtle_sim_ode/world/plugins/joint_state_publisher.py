@@ -5,7 +5,7 @@ from dataclasses import dataclass
 from typing import List, Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins.tags import number, text
 
 JOINT_STATE_PUBLISHER = "libgazebo_ros_joint_state_publisher.so"

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from typing import Mapping, Tuple
 
 from turtle_sim_ode.models.text import robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.sensors.kobuki import KOBUKI_CLIFF_THRESHOLD
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 from turtle_sim_ode.world.plugins.diff_drive import DriveConfig

@@ -5,9 +5,9 @@ import random
 from dataclasses import dataclass
 from typing import List, Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import Vec3
+from turtle_sim_ode.models.transforms import Vec3
 from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins.tags import number, text, triple
 
 P3D = "libgazebo_ros_p3d.so"

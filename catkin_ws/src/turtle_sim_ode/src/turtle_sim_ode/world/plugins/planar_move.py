@@ -8,9 +8,10 @@ import math
 from dataclasses import dataclass
 from typing import Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, JointHandle, rpy_of
+from turtle_sim_ode.models.built import BuiltModel, JointHandle
+from turtle_sim_ode.models.transforms import rpy_of
 from turtle_sim_ode.models.text import ModelError, read_number, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.diff_drive import DiffDriveParams
 from turtle_sim_ode.world.plugins.tags import number, text
 

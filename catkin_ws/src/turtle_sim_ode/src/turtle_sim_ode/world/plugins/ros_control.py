@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Dict, Mapping
 
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 
 ROS_CONTROL = "libgazebo_ros_control.so"
 MODEL_PLUGINS = (ROS_CONTROL,)

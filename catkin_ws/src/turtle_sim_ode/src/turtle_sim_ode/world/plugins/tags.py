@@ -5,7 +5,7 @@ import math
 from typing import Tuple
 
 from turtle_sim_ode.models.text import ModelError, read_number
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 
 
 def number(plugin: GazeboPlugin, tag: str, default: float, minimum: float = 0.0) -> float:

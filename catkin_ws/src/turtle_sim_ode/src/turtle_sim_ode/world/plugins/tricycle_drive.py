@@ -13,10 +13,10 @@ import math
 from dataclasses import dataclass
 from typing import Mapping, Optional, Tuple
 
-from turtle_sim_ode.models.builder import BuiltModel, JointHandle
+from turtle_sim_ode.models.built import BuiltModel, JointHandle
 from turtle_sim_ode.models.joint_positions import move_joints
 from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics import sanity
 from turtle_sim_ode.world.diff_drive import DiffDriveParams

@@ -24,9 +24,10 @@ from typing import Dict, List, Mapping, Optional, Tuple
 
 import ode
 
-from turtle_sim_ode.models.builder import BuiltModel, quat_rotate
+from turtle_sim_ode.models.built import BuiltModel
+from turtle_sim_ode.models.transforms import quat_rotate
 from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
-from turtle_sim_ode.models.urdf import GazeboPlugin
+from turtle_sim_ode.models.description import GazeboPlugin
 from turtle_sim_ode.world.plugins.p3d import find_body
 from turtle_sim_ode.world.plugins.tags import text
 

@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""What a 3D lidar costs the simulation (issue #23): the TurtleBot driving its circle at 1 ms steps in
+bench.camera's furnished room, stepped without a lidar and with a VLP-16 (velodyne_description's VLP-16 macro: 16
+lasers x 1800 samples, 10 Hz, libgazebo_ros_velodyne_laser.so) on its base, each scan cast and its cloud packed as
+the ROS adapter does (sockets aside).
+
+``lidar_cost`` returns a dict for bench_sim's JSON; run alone (``python3 -m bench.lidar``
+in scripts/lib; ``--quick`` for a shorter run) it prints the table.
+Real-time factors are the best of ``repeats`` timed runs taken in turns; the figure that matters is the share of
+the real-time factor without a lidar that is kept with it.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from typing import Any, Callable, Dict, Optional, Sequence, Tuple
+
+from bench.camera import MODEL, PACKAGE, best_seconds, stepper, turtlebot_in_room
+
+# (horizontal samples, lasers, rate Hz): the VLP-16 of the issue first.
+LIDARS: Tuple[Tuple[int, int, float], ...] = ((1800, 16, 10.0), (1024, 64, 10.0))
+LIDAR_BLOCK = """
+  <gazebo reference="base_link">
+    <sensor type="ray" name="bench_lidar">
+      <pose>0 0 0.5 0 0 0</pose>
+      <update_rate>{rate}</update_rate>
+      <ray>
+        <scan>
+          <horizontal><samples>{samples}</samples><resolution>1</resolution>
+            <min_angle>-3.14159265</min_angle><max_angle>3.14159265</max_angle></horizontal>
+          <vertical><samples>{lasers}</samples><resolution>1</resolution>
+            <min_angle>-0.2617994</min_angle><max_angle>0.2617994</max_angle></vertical>
+        </scan>
+        <range><min>0.3</min><max>131</max><resolution>0.001</resolution></range>
+      </ray>
+      <plugin name="velodyne" filename="libgazebo_ros_velodyne_laser.so">
+        <topicName>/velodyne_points</topicName><frameName>velodyne</frameName>
+        <min_range>0.9</min_range><max_range>130.0</max_range><gaussianNoise>0.008</gaussianNoise>
+      </plugin>
+    </sensor>
+  </gazebo>
+</robot>"""
+
+
+def scan_work(sim: Any, ray_kernel: bool = True) -> Callable[[], None]:
+    """One scan as VelodynePublisher makes it while subscribed: the rays, the cloud, the message's bytes."""
+    import numpy as np
+
+    from turtle_sim_ode.ros.camera_topics import packer
+    from turtle_sim_ode.ros.plugins.velodyne import POINT_FIELDS
+    from turtle_sim_ode.sensors.lidar import MultiBeamLidar
+    from turtle_sim_ode.sensors.plugins.velodyne import POINT_STEP, VelodyneCloud, VelodyneConfig
+    from sensor_msgs.msg import PointCloud2
+
+    (config,) = [c for c in sim.plugins[MODEL].configs if isinstance(c, VelodyneConfig)]
+    lidar = MultiBeamLidar(sim.physics, sim.models[MODEL], config, ray_kernel=ray_kernel)
+    if ray_kernel and not lidar.uses_ray_kernel:
+        raise RuntimeError("libturtle_sim_ode_rays.so is not built: run scripts/build.sh")
+    cloud = VelodyneCloud(config, lidar.directions, np.random.default_rng(1))
+    message = PointCloud2(fields=POINT_FIELDS, point_step=POINT_STEP)
+    pack = packer(message)
+
+    def work() -> None:
+        points, height, width, dense = cloud.points(lidar.ranges())
+        message.height, message.width, message.row_step = height, width, POINT_STEP * width
+        pack(1, 0, 0, points, dense)
+
+    return work
+
+
+def with_lidar(lidar: Tuple[int, int, float]) -> Tuple[Any, Sequence[Callable[[], None]]]:
+    samples, lasers, rate = lidar
+    sim, _ = turtlebot_in_room(None, LIDAR_BLOCK.format(samples=samples, lasers=lasers, rate=rate))
+    return sim, [scan_work(sim)]
+
+
+def lidar_cost(
+    steps: int = 3000, repeats: int = 3, lidars: Sequence[Tuple[int, int, float]] = LIDARS
+) -> Dict[str, Any]:
+    """Real-time factors at 1 ms steps without and with each lidar, their ratios, and the time a scan takes."""
+    bare = turtlebot_in_room(None)
+    worlds = [with_lidar(lidar) for lidar in lidars]
+    runs = [stepper(*bare, 0.0)] + [stepper(sim, scans, lidar[2]) for (sim, scans), lidar in zip(worlds, lidars)]
+    best = best_seconds([lambda run=run: run(steps) for run in runs], repeats)
+    time_step = bare[0].physics.time_step
+    rtf = [steps * time_step / seconds for seconds in best]
+    rows = []
+    for index, ((samples, lasers, rate), (sim, scans)) in enumerate(zip(lidars, worlds)):
+        scan_best, numpy_best = best_seconds([scans[0], scan_work(sim, ray_kernel=False)], max(3, repeats))
+        rows.append(
+            {
+                "samples": samples,
+                "lasers": lasers,
+                "rate_hz": rate,
+                "rtf": rtf[index + 1],
+                "rtf_share": rtf[index + 1] / rtf[0],
+                "ms_per_scan": scan_best * 1e3,
+                "ms_per_scan_numpy": numpy_best * 1e3,
+            }
+        )
+    return {"time_step": time_step, "rtf_without_lidar": rtf[0], "lidars": rows}
+
+
+def table(result: Dict[str, Any]) -> str:
+    lines = [
+        "| lidar | rate | RTF | share of RTF without lidar | ms / scan (C rays) | ms / scan (numpy rays) |",
+        "|---|---|---|---|---|---|",
+        f"| none | - | {result['rtf_without_lidar']:.2f} | 1.00 | - | - |",
+    ]
+    for row in result["lidars"]:
+        lines.append(
+            f"| {row['lasers']} x {row['samples']} rays | {row['rate_hz']:g} Hz | {row['rtf']:.2f} | "
+            f"{row['rtf_share']:.2f} | {row['ms_per_scan']:.1f} | {row['ms_per_scan_numpy']:.1f} |"
+        )
+    return "\n".join(lines)
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="1 s of sim time per run, 2 repeats")
+    args = parser.parse_args(argv)
+    sys.path.insert(0, os.path.join(PACKAGE, "src"))
+    print(table(lidar_cost(1000, 2) if args.quick else lidar_cost()))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

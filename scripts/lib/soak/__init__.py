@@ -1,0 +1,1 @@
+"""The soak test of scripts/soak.py: its ROS node, the sampling run and the verdict."""
