@@ -228,12 +228,13 @@ def test_resolver_installs_the_real_xacro_where_the_platform_has_it(platform):
 
 
 # Packages Debian 12 lacks and the ROS apt repository has (ros-noetic-*): ros_control's, geographic_info's
-# messages for hector's GPS service, robot_localization (the SMB course's EKF).
+# messages for hector's GPS service, robot_localization (the SMB course's EKF), media_export (rviz asks for it).
 RELEASED_DROPINS = (
     "control_msgs",
     "controller_manager",
     "controller_manager_msgs",
     "geographic_msgs",
+    "media_export",
     "robot_localization",
     "uuid_msgs",
 )
@@ -248,7 +249,7 @@ def test_the_packages_debian_lacks_are_dropins(tmp_path):
     assert sorted(apply(tmp_path).stdout.split()) == [str(src / name) for name in RELEASED_DROPINS]
     install_system_package(tmp_path, "control_msgs")
     install_system_package(tmp_path, "uuid_msgs")
-    kept = ("controller_manager", "controller_manager_msgs", "geographic_msgs", "robot_localization")
+    kept = ("controller_manager", "controller_manager_msgs", "geographic_msgs", "media_export", "robot_localization")
     expected = [str(src / name) for name in kept]
     assert apply(tmp_path).stdout.split() == expected
 

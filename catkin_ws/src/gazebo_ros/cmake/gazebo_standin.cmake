@@ -1,0 +1,42 @@
+# find_package(gazebo) where Gazebo is not installed (Debian 12): writes gazebo's CMake package as turtle_sim_ode's
+# stand-in into the devel space (on CMAKE_PREFIX_PATH of the packages configured after this one) and installs it.
+# Where a real Gazebo's package config exists, nothing is written and a stand-in left from an earlier build goes.
+
+# Gazebo 11, as Noetic's (Ubuntu 20.04) Gazebo, the last Gazebo Classic release
+set(GAZEBO_STANDIN_VERSION 11.15.1)
+set(GAZEBO_STANDIN_MAJOR 11)
+set(GAZEBO_STANDIN_MARKER "turtle_sim_ode's stand-in")
+
+# The first gazebo-config.cmake below the prefixes find_package searches that is not a stand-in (of this or another
+# workspace), or "" in out_var.
+function(find_real_gazebo_config out_var)
+  set(${out_var} "" PARENT_SCOPE)
+  foreach(prefix ${CMAKE_PREFIX_PATH} ${CMAKE_SYSTEM_PREFIX_PATH})
+    foreach(folder lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/gazebo lib/cmake/gazebo share/gazebo/cmake)
+      foreach(name gazebo-config.cmake gazeboConfig.cmake)
+        set(config "${prefix}/${folder}/${name}")
+        if(EXISTS "${config}")
+          file(STRINGS "${config}" marker REGEX "${GAZEBO_STANDIN_MARKER}")
+          if(NOT marker)
+            set(${out_var} "${config}" PARENT_SCOPE)
+            return()
+          endif()
+        endif()
+      endforeach()
+    endforeach()
+  endforeach()
+endfunction()
+
+find_real_gazebo_config(real_gazebo_config)
+set(standin_dir "${CATKIN_DEVEL_PREFIX}/share/gazebo/cmake")
+if(real_gazebo_config)
+  message(STATUS "${PROJECT_NAME}: Gazebo's own CMake package (${real_gazebo_config}) is used, no stand-in written")
+  file(REMOVE_RECURSE "${CATKIN_DEVEL_PREFIX}/share/gazebo")
+else()
+  foreach(name gazebo-config.cmake gazebo-config-version.cmake)
+    configure_file("${CMAKE_CURRENT_LIST_DIR}/${name}.in" "${standin_dir}/${name}" @ONLY)
+  endforeach()
+  # generated, so outside the package's source
+  #catkin_lint: ignore_once external_directory
+  install(DIRECTORY "${standin_dir}/" DESTINATION share/gazebo/cmake)
+endif()
