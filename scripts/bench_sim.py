@@ -48,7 +48,7 @@ from bench.peer import peer  # noqa: E402
 from bench.physics import physics_only  # noqa: E402
 from bench.plan import FULL, QUICK, REPO, Plan  # noqa: E402
 from bench.report import close_machine, machine, table, targets, write_report  # noqa: E402
-from bench.scaling import scaling_cost  # noqa: E402
+from bench.scaling import scaling_cost_apart  # noqa: E402
 from ros_run.process_stats import cpu_ticks  # noqa: E402
 from ros_run.processes import Processes, ToolError  # noqa: E402
 
@@ -102,7 +102,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         measure(results, "cameras", "6. cameras", lambda: cameras(plan, processes))
         measure(results, "lidar", "7. lidar", lambda: lidar_cost(plan.physics_steps, plan.physics_repeats))
         measure(results, "ros_control", "8. ros_control", lambda: ros_control_cost(plan))
-        measure(results, "scaling", "9. scaling", lambda: scaling_cost(plan.physics_steps, plan.physics_repeats))
+        measure(results, "scaling", "9. scaling", lambda: scaling_cost_apart(plan.physics_steps, plan.physics_repeats))
         measure(results, "viewer", "10. viewer", lambda: viewer_cost(plan, processes))
     close_machine(results, ticks_at_start)
     results["targets"] = targets(results)
