@@ -108,7 +108,6 @@ def test_meshes_keep_their_own_colours_and_scale() -> None:
     assert only_visuals(scene_of(sim), "m")[0].rgba == (0.0, 1.0, 0.0, 1.0)
 
 
-
 def test_mesh_markers_use_the_files_materials_only_without_a_visual_material() -> None:
     """rviz (default_plugin/markers/mesh_resource_marker.cpp, MeshResourceMarker::onNewMessage) keeps a mesh's
     embedded materials only with mesh_use_embedded_materials and colour 0 0 0 0; with another colour it draws them
