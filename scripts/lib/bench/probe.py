@@ -151,10 +151,7 @@ def measure_rtf_task(
     # Raw TCPROS readers, not rospy subscribers: every message is still sent and read, but this process spends
     # about a microsecond on each instead of a rospy callback's tens, which would load the machine it measures.
     def published() -> Set[str]:
-        try:
-            return {topic for topic, _ in rospy.get_published_topics()}
-        except ConnectionRefusedError:  # a master that a loaded machine has not scheduled yet: ask again
-            return set()
+        return {topic for topic, _ in rospy.get_published_topics()}
 
     if not wait_for(lambda: set(topics) <= published(), STARTUP_TIMEOUT_S):
         raise BenchError("not published: %s" % sorted(set(topics) - published()))
