@@ -64,9 +64,12 @@ def test_the_arm_rests_where_p_gain_and_gravity_put_it(shoulder: float, elbow: f
     sim, control = simulated(ARM, "rrbot", 0.0, POSITION_CONTROLLERS)
     for joint, target in zip(JOINTS, (shoulder, elbow)):
         control.manager.find(f"{joint}_position_controller").controller._on_command(target)
-    run(sim, 6.0)
+    run(sim, 5.0)
+    before = {joint: control.hw.joints[joint].position for joint in JOINTS}
+    run(sim, 1.0)
     resting = resting_angles((shoulder, elbow), P_GAIN)
     for joint, expected in zip(JOINTS, resting):
         assert abs(control.hw.joints[joint].position - expected) < 2e-3, (joint, expected)
-        assert abs(control.hw.joints[joint].velocity) < 1e-3
+        # at rest: the mean velocity over the last second (the solver leaves ~1e-3 rad/s of jitter in one step's reading)
+        assert abs(control.hw.joints[joint].position - before[joint]) < 1e-3, joint
     assert math.dist(sim.models["rrbot"].link_pose("column")[0], (0.0, 0.0, 0.0)) < 1e-4
