@@ -193,7 +193,7 @@ def camera_cost(
     target = next((row for row in rows if (row["width"], row["height"], row["rate_hz"]) == CAMERAS[0]), None)
     return {
         "time_step": time_step,
-        "renderer": "rays in C (src/ray_kernel.c); ms_per_frame_numpy: the numpy fallback (sensors.raycast)",
+        "renderer": "rays in C (src/ray_camera.c); ms_per_frame_numpy: the numpy fallback (sensors.raycast)",
         "rtf_without_camera": rtf[0],
         "cameras": rows,
         "target_share": TARGET_SHARE,

@@ -105,8 +105,5 @@ def main() -> int:
     except ParamError as error:
         rospy.logfatal("depthimage_to_laserscan: %s", error)
         return 1
-    try:
-        rospy.spin()
-    except rospy.ROSInterruptException:
-        pass
+    rospy.spin()  # returns at shutdown; it raises no ROSInterruptException (rospy/client.py, spin)
     return 0

@@ -107,10 +107,7 @@ def main() -> int:
         rospy.logfatal("pointcloud_to_laserscan: %s", error)
         return 1
     PointCloudToLaserScan(params)
-    try:
-        rospy.spin()
-    except rospy.ROSInterruptException:
-        pass
+    rospy.spin()  # returns at shutdown; it raises no ROSInterruptException (rospy/client.py, spin)
     return 0
 
 

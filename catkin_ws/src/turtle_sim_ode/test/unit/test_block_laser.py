@@ -5,23 +5,20 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from ray_grid_helpers import ray_grid_sdf
 
 from turtle_sim_ode.sensors.config import read_sdf_sensors
 from turtle_sim_ode.sensors.lidar import MultiBeamLidar
 from turtle_sim_ode.sensors.plugins.block_laser import BlockLaserConfig, block_points
 from turtle_sim_ode.world.simulation import Simulation
 
-BLOCK_SDF = """<sdf version="1.6"><model name="bot"><static>true</static><link name="laser">
-  <pose>0 0 0.5 0 0 0</pose>
-  <sensor type="ray" name="block"><update_rate>5</update_rate>
-    <ray><scan>
-      <horizontal><samples>3</samples><resolution>1</resolution><min_angle>-0.2</min_angle><max_angle>0.2</max_angle>
-      </horizontal>
-      <vertical><samples>3</samples><resolution>1</resolution><min_angle>-0.1</min_angle><max_angle>0.1</max_angle>
-      </vertical></scan>
-      <range><min>0.1</min><max>5</max></range></ray>
-    <plugin name="block" filename="libgazebo_ros_block_laser.so">{tags}</plugin>
-  </sensor></link></model></sdf>"""
+
+def block_sdf(tags: str = "") -> str:
+    """A 3 x 3 block laser over +-0.2 rad across and +-0.1 rad up and down, 0.1 .. 5 m, 5 Hz."""
+    plugin = "libgazebo_ros_block_laser.so"
+    return ray_grid_sdf("laser", "block", 5, (3, -0.2, 0.2), (3, -0.1, 0.1), "<min>0.1</min><max>5</max>", plugin, tags)
+
+
 WALL_SDF = """<sdf version="1.6"><model name="wall"><static>true</static><link name="link">
   <collision name="c"><geometry><box><size>0.2 0.2 4</size></box></geometry></collision></link></model></sdf>"""
 
@@ -31,14 +28,14 @@ def no_noise(mean, sigma, shape):  # type: ignore[no-untyped-def]
 
 
 def test_defaults() -> None:
-    (config,) = read_sdf_sensors(BLOCK_SDF.format(tags="")).configs
+    (config,) = read_sdf_sensors(block_sdf()).configs
     assert isinstance(config, BlockLaserConfig)
     assert (config.topic, config.frame, config.gaussian_noise) == ("/world", "/world", 0.0)  # Load's, sic
 
 
 def test_points_and_half_step_angles() -> None:
     sim = Simulation()
-    sim.spawn_sdf("bot", BLOCK_SDF.format(tags="<topicName>cloud</topicName>"))
+    sim.spawn_sdf("bot", block_sdf("<topicName>cloud</topicName>"))
     sim.spawn_sdf("wall", WALL_SDF, (1.6, 0.0, 2.0, 0, 0, 0))  # a narrow post: only the centre column hits it
     (config,) = sim.plugins["bot"].configs
     lidar = MultiBeamLidar(sim.physics, sim.models["bot"], config)
@@ -55,7 +52,7 @@ def test_points_and_half_step_angles() -> None:
 
 
 def test_noise_spares_points_at_the_maximum() -> None:
-    (config,) = read_sdf_sensors(BLOCK_SDF.format(tags="<gaussianNoise>0.01</gaussianNoise>")).configs
+    (config,) = read_sdf_sensors(block_sdf("<gaussianNoise>0.01</gaussianNoise>")).configs
     ranges = np.array([[5.0, 1.0, 0.05]] * 3)
     calls = []
 
@@ -71,7 +68,7 @@ def test_noise_spares_points_at_the_maximum() -> None:
 def test_the_ray_shape_ranges_are_without_the_sensor_noise() -> None:
     """RaySensor adds <ray><noise> to its scan message; gazebo_ros_block_laser's PutLaserData reads the ray shape
     (LaserShape()->GetRange), which has none: hits just past range min stay finite and within the range."""
-    noisy = BLOCK_SDF.replace(
+    noisy = block_sdf().replace(
         "</range>", "</range><noise><type>gaussian</type><mean>0</mean><stddev>0.5</stddev></noise>"
     )
     sim = Simulation()

@@ -3,7 +3,7 @@ Joint::CheckAndTruncateForce, called from Joint::SetForce, which gazebo_ros's ap
 no effort in the direction in which the joint already turns faster than its velocity limit, then the effort clamped
 to the effort limit."""
 import pytest
-from test_world_control import floating
+from world_helpers import floating
 
 from turtle_sim_ode.world.joint_effort import truncated_effort
 

@@ -1,5 +1,5 @@
 """The package's layout holds: layers import one way, no module cycles, ROS only in turtle_sim_ode.ros, short
-modules, and one parse of a spawned model's text."""
+modules (Python, C and tests alike), and one parse of a spawned model's text."""
 from __future__ import annotations
 
 import ast
@@ -89,7 +89,13 @@ def test_only_the_ros_layer_imports_ros(module: str) -> None:
     assert layer_of(module) == "ros" or not ros_imports, f"{module} imports {sorted(ros_imports)}"
 
 
-@pytest.mark.parametrize("path", sorted(SOURCE.rglob("*.py")), ids=lambda path: str(path.relative_to(SOURCE)))
+# The Python package, the C libraries loaded through ctypes (src/*.c, their headers) and the tests.
+SHORT_FILES = sorted(SOURCE.rglob("*.py")) + sorted((PACKAGE_ROOT / "src").glob("*.[ch]"))
+SHORT_FILES += sorted((PACKAGE_ROOT / "include").rglob("*.h"))
+SHORT_FILES += sorted((PACKAGE_ROOT / "test").rglob("*.py"))
+
+
+@pytest.mark.parametrize("path", SHORT_FILES, ids=lambda path: str(path.relative_to(PACKAGE_ROOT)))
 def test_modules_are_short(path: Path) -> None:
     assert len(path.read_text().splitlines()) <= MAX_MODULE_LINES
 

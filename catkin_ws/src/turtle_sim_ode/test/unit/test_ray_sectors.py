@@ -1,4 +1,4 @@
-"""The multi-beam lidars' broad phase (src/ray_kernel.c, issue #33): with more rays than sectors of azimuth, each ray
+"""The multi-beam lidars' broad phase (src/ray_sectors.c, issue #33): with more rays than sectors of azimuth, each ray
 tests only the shapes listed in its sector. The distances must be those of testing every shape (the same call in
 batches too small to be sorted, bit for bit), for shapes anywhere around the origin, above it, across azimuth +-pi,
 and for rays straight up or down."""

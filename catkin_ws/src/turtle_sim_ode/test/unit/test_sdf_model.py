@@ -1,50 +1,26 @@
-"""SDF models and worlds: parsing, conversion to the URDF-style tree, and building them."""
+"""SDF models: parsing, conversion to the URDF-style tree (joint axes, link poses, nested models), and building them
+(errors: test_sdf_errors.py; worlds: test_sdf_world.py)."""
 import dataclasses
 import math
 import random
 
 import pytest
-from conftest import PACKAGE_ROOT, TURTLEBOT_URDF
+from conftest import TURTLEBOT_URDF
+from sdf_helpers import box_collision, inertial, link, model, sdf
 
 from turtle_sim_ode.models.builder import build_model
-from turtle_sim_ode.models.transforms import compose, inverse, pose_transform, quat_from_rpy
+from turtle_sim_ode.models.description import Box, Mesh, Pose
 from turtle_sim_ode.models.sdf import parse_sdf_model
 from turtle_sim_ode.models.sdf_parts import PLANE_THICKNESS
-from turtle_sim_ode.models.sdf_world import Include, parse_sdf_world
-from turtle_sim_ode.models.description import Box, GazeboSurface, Mesh, Pose
-from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.models.text import ModelError
+from turtle_sim_ode.models.transforms import compose, inverse, pose_transform, quat_from_rpy
+from turtle_sim_ode.models.urdf import parse_urdf
 from turtle_sim_ode.physics import ode_constants as oc
 from turtle_sim_ode.physics.settings import PhysicsParams
 from turtle_sim_ode.physics.surfaces import SurfaceParams
 from turtle_sim_ode.physics.world import PhysicsWorld
 
 NO_GRAVITY = PhysicsParams(gravity=(0.0, 0.0, 0.0))
-WORLDS = PACKAGE_ROOT / "worlds"
-
-
-def sdf(body, version="1.6"):
-    return f'<?xml version="1.0"?>\n<sdf version="{version}">\n{body}\n</sdf>'
-
-
-def inertial(mass=1.0, inertia=0.1):
-    return (
-        f"<inertial><mass>{mass}</mass><inertia><ixx>{inertia}</ixx><iyy>{inertia}</iyy>"
-        f"<izz>{inertia}</izz></inertia></inertial>"
-    )
-
-
-def link(name, pose="0 0 0 0 0 0", extra=inertial()):
-    return f'<link name="{name}"><pose>{pose}</pose>{extra}</link>'
-
-
-def box_collision(size, surface=""):
-    return f'<collision name="c"><geometry><box><size>{size}</size></box></geometry>' f"{surface}</collision>"
-
-
-def model(name, *parts, static=False):
-    return f'<model name="{name}"><static>{str(static).lower()}</static>{"".join(parts)}</model>'
-
 
 # base at the model origin; arm 1 m ahead, hinged 0.5 m behind its origin (joint pose).
 ARM = model(
@@ -56,124 +32,6 @@ ARM = model(
     "<limit><lower>-0.5</lower><upper>0.5</upper><effort>3</effort></limit>"
     "<dynamics><damping>0.1</damping><friction>0</friction></dynamics></axis></joint>",
 )
-
-
-# --- worlds ------------------------------------------------------------------------------
-def test_empty_world():
-    world = parse_sdf_world((WORLDS / "empty.world").read_text())
-    assert (world.ground_plane, world.sun, world.models) == (True, True, [])
-    assert world.includes == [Include("model://ground_plane")]  # a model like any other, built in (includes.py)
-    assert world.warnings == []
-    physics = world.physics
-    assert (physics.max_step_size, physics.solver, physics.iterations) == (0.001, "quick", 50)
-    assert (physics.real_time_factor, physics.real_time_update_rate) == (1.0, 1000.0)
-    params = physics.apply(PhysicsParams(time_step=0.002, solver="world", erp=0.5))
-    assert (params.time_step, params.solver, params.solver_iterations) == (0.001, "quick", 50)
-    assert params.gravity == (0.0, 0.0, -9.81)
-    assert params.erp == 0.5  # not set by the world: the simulator's value stays
-
-
-def test_room_world_parses():
-    world = parse_sdf_world((WORLDS / "room.world").read_text())
-    assert world.ground_plane and world.warnings == []
-    models = {m.name: m for m in world.models}
-    assert list(models) == ["walls", "obstacle_box", "obstacle_cylinder", "push_box"]
-    walls = models["walls"].model
-    assert walls.static and len(walls.links) == 4
-    sizes = sorted(walls.links[name].collisions[0].geometry.size for name in walls.links)
-    assert sizes == [(6.0, 0.1, 0.5)] * 2 + [(6.2, 0.1, 0.5)] * 2
-    assert models["obstacle_box"].model.static and models["obstacle_cylinder"].model.static
-    box = models["push_box"]
-    assert not box.model.static
-    assert box.model.links["link"].inertial.mass == 2.0
-    assert box.model.surfaces["link"] == GazeboSurface(mu1=0.5, mu2=0.5, kp=1e6, kd=100.0)
-    assert box.spawn_pose == (1.0, -1.5, 0.15, 0.0, 0.0, 0.0)
-
-
-def test_room_world_walls_stop_the_pushed_box_and_static_models_have_no_bodies():
-    world = parse_sdf_world((WORLDS / "room.world").read_text())
-    physics = PhysicsWorld(world.physics.apply(PhysicsParams()))
-    built = {m.name: build_model(physics, m.model, m.spawn_pose) for m in world.models}
-    assert [name for name, b in built.items() if b.bodies] == ["push_box"]
-    assert built["walls"].link_pose("wall_east")[0] == pytest.approx((3.05, 0.0, 0.25))
-    box = built["push_box"]
-    for _ in range(200):
-        physics.step()
-    assert box.link_pose("link")[0][2] == pytest.approx(0.15, abs=1e-3)
-    box.links["link"].body.setLinearVel((0.0, -6.0, 0.0))  # would slide 3.7 m without the wall
-    for _ in range(1500):
-        physics.step()
-    position, _ = box.link_pose("link")
-    assert position[1] == pytest.approx(-3.0 + 0.15, abs=0.02)  # against the south wall
-    assert position[2] == pytest.approx(0.15, abs=2e-3)
-    assert built["walls"].link_twist("wall_south") == ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
-
-
-def test_static_model_teleports_and_removes_only_its_geoms():
-    world = parse_sdf_world((WORLDS / "room.world").read_text())
-    physics = PhysicsWorld()
-    built = {m.name: build_model(physics, m.model, m.spawn_pose) for m in world.models}
-    assert physics.static_space.getNumGeoms() == 6
-    obstacle = built["obstacle_box"]
-    obstacle.set_pose(-1.0, 2.0, 0.25)
-    position, quaternion = obstacle.link_pose("link")
-    assert position == pytest.approx((-1.0, 2.0, 0.25)) and quaternion == pytest.approx((0, 0, 0, 1))
-    assert obstacle.geoms["link"][0].getPosition() == pytest.approx((-1.0, 2.0, 0.25))
-    built["walls"].remove()
-    assert physics.static_space.getNumGeoms() == 2
-    physics.step()  # still consistent
-
-
-def test_world_includes_plugins_and_ignored_parts():
-    world = parse_sdf_world(
-        sdf(
-            """<world name="w">
-      <light name="l" type="directional"/>
-      <include><uri>model://turtlebot3_burger</uri><name>robot</name>
-        <pose>1 2 0 0 0 1.5</pose><static>false</static></include>
-      <include><uri>model://table</uri></include>
-      <plugin name="state" filename="libgazebo_ros_state.so"><ros_ns>/g</ros_ns></plugin>
-      <actor name="walker"/>
-      <physics type="ode"><gravity>0 0 -1</gravity></physics>
-      <model name="ground_plane"><static>true</static><link name="link"><collision name="c">
-        <geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>
-      </collision></link></model>
-    </world>""",
-            "1.4",
-        )
-    )
-    assert world.includes == [
-        Include("model://turtlebot3_burger", "robot", Pose((1.0, 2.0, 0.0), (0.0, 0.0, 1.5)), False),
-        Include("model://table"),
-    ]
-    assert [include.index for include in world.includes] == [1, 2]  # after the <light>
-    assert world.plugins[0].params == {"ros_ns": "/g"}
-    assert world.physics.gravity == (0.0, 0.0, -1.0)  # SDF 1.4 puts it in <physics>
-    assert world.ground_plane and not world.sun and [model.name for model in world.models] == ["ground_plane"]
-    assert world.models[0].index == 6  # after the includes, plugin, actor and physics, as written
-    assert world.warnings == ["<world> <actor> is not supported, ignored"]
-
-
-def test_world_physics_default_block_and_range():
-    world = parse_sdf_world(
-        sdf(
-            '<world name="w"><physics type="ode"><max_step_size>0.01'
-            '</max_step_size></physics><physics type="bullet" default="1">'
-            "<ode><constraints><erp>2</erp></constraints></ode></physics>"
-            "</world>"
-        )
-    )
-    assert world.physics.max_step_size is None  # the default block is the second one
-    # A world without a ground plane has no ground (Gazebo's World::Load adds none): no warning either.
-    assert len(world.warnings) == 1 and "only its ODE settings" in world.warnings[0]
-    with pytest.raises(ModelError, match="erp"):
-        world.physics.apply(PhysicsParams())
-
-
-def test_world_gravity_beyond_the_bound_is_refused():
-    world = parse_sdf_world(sdf('<world name="w"><gravity>0 0 -1e6</gravity></world>'))
-    with pytest.raises(ModelError, match=r"gravity .*-1000000"):
-        world.physics.apply(PhysicsParams())
 
 
 # --- models ------------------------------------------------------------------------------
@@ -382,197 +240,6 @@ def test_static_flag_on_a_urdf_model_builds_fixed_geoms():
     assert physics.static_space.getNumGeoms() == 0
 
 
-# --- errors -------------------------------------------------------------------------------
-def test_bad_xml_reports_line():
-    with pytest.raises(ModelError, match="line 4, column 2: mismatched tag"):
-        parse_sdf_model('<sdf version="1.6">\n<model name="m">\n<link name="a">\n</model></sdf>')
-
-
-@pytest.mark.parametrize(
-    "doctype",
-    [
-        '<!DOCTYPE m [<!ENTITY a "aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">'
-        '<!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;"><!ENTITY d "&c;&c;&c;&c;&c;&c;&c;&c;&c;&c;">]>',
-        '<!DOCTYPE m [<!ENTITY d SYSTEM "file:///etc/passwd">]>',
-    ],
-)
-def test_entities_are_refused(doctype):
-    with pytest.raises(ModelError, match="XML guard"):
-        parse_sdf_model(f'<?xml version="1.0"?>{doctype}<model name="m"><link name="&d;"/></model>')
-    with pytest.raises(ModelError, match="XML guard"):
-        parse_sdf_world(f'<?xml version="1.0"?>{doctype}<sdf version="1.6"><world name="&d;"/></sdf>')
-
-
-def joint(parent, child, joint_type="revolute", extra="", name="j"):
-    return (
-        f'<joint name="{name}" type="{joint_type}"><parent>{parent}</parent><child>{child}</child>' f"{extra}</joint>"
-    )
-
-
-@pytest.mark.parametrize(
-    "body, message",
-    [
-        (model("m", link("a"), joint("missing", "a")), "parent link 'missing' does not exist"),
-        (model("m", link("a"), joint("a", "missing")), "child link 'missing' does not exist"),
-        (model("m", link("a"), joint("world", "a", "fixed")), "joints to the world"),
-        (model("m", link("a"), link("b"), joint("a", "b", "ball")), "unsupported type 'ball'"),
-        (
-            model("m", link("a"), link("b"), joint("a", "b", extra="<axis><xyz>0 0 0</xyz></axis>")),
-            "axis must not be zero",
-        ),
-        (model("m", link("a"), link("a")), "duplicate link name 'a'"),
-        (model("m", link("a"), link("b"), link("c"), joint("a", "c"), joint("b", "c", name="k")), "two parents"),
-        (model("m", link("a"), link("b"), joint("a", "b"), joint("a", "b", name="j")), "duplicate joint name 'j'"),
-        (model("m", link("r"), link("a"), link("b"), joint("a", "b"), joint("b", "a", name="k")), "cycle"),
-        (model("m", '<link name="a"><pose relative_to="b">0 0 0 0 0 0</pose></link>'), "relative_to"),
-        (model("m", '<link name="a"><pose>0 0 0</pose></link>'), "expected 6 numbers"),
-        (model("m", link("a", extra="<inertial><mass>0</mass></inertial>")), "mass must be > 0"),
-        (
-            model("m", link("a", extra='<collision name="c"><geometry><heightmap/></geometry>' "</collision>")),
-            "unsupported geometry",
-        ),
-        (model("m", "<include><uri>model://x</uri></include>", link("a")), "an <include> inside a model"),
-        (model("m", '<model><link name="a"/></model>', link("a")), "a nested <model> needs a name"),
-        (model("m"), "has no <link>"),
-        (
-            model("m", link("a"), link("b"), '<joint name="j" type="fixed"><parent>a</parent></joint>'),
-            "needs <parent> and <child>",
-        ),
-        (
-            model(
-                "m",
-                link("a"),
-                link("b"),
-                joint("a", "b", extra="<axis><limit><lower>1</lower><upper>0</upper></limit></axis>"),
-            ),
-            "lower 1.0 > upper 0.0",
-        ),
-        (
-            model(
-                "m",
-                link(
-                    "a", extra='<collision name="c"><geometry><plane><size>1</size></plane>' "</geometry></collision>"
-                ),
-                static=True,
-            ),
-            "expected 2 numbers",
-        ),
-        (
-            model(
-                "m",
-                link(
-                    "a",
-                    extra='<collision name="c"><geometry><sphere><radius>-1</radius>'
-                    "</sphere></geometry></collision>",
-                ),
-            ),
-            "must be > 0",
-        ),
-        ('<model name="m"><static>maybe</static><link name="a"/></model>', "expected true or false"),
-        ('<world name="w"/>', "world_name launch argument"),
-    ],
-)
-def test_model_errors(body, message):
-    with pytest.raises(ModelError, match=message):
-        parse_sdf_model(sdf(body))
-
-
-@pytest.mark.parametrize(
-    "text, message",
-    [
-        (sdf(model("m", link("a")), "1.8"), "version 1.8 is not supported"),
-        (sdf(model("m", link("a")), "one"), "expected a version"),
-        (
-            sdf(
-                model(
-                    "m", link("a"), link("b"), joint("a", "b", extra='<axis><xyz expressed_in="f">1 0 0</xyz></axis>')
-                ),
-                "1.7",
-            ),
-            "expressed_in='f'",
-        ),
-        ('<robot name="r"/>', "root element"),
-        (sdf(model("m", link("a")) + model("n", link("a"))), "expected one <model>"),
-    ],
-)
-def test_document_errors(text, message):
-    with pytest.raises(ModelError, match=message):
-        parse_sdf_model(text)
-
-
-def test_unsupported_parts_are_warned_about():
-    surface = "<surface><friction><ode><mu>{}</mu></ode></friction></surface>"
-    robot = parse_sdf_model(
-        sdf(
-            model(
-                "m",
-                "<self_collide>true</self_collide>",
-                link(
-                    "a",
-                    extra=inertial()
-                    + "<kinematic>true</kinematic>"
-                    + box_collision("1 1 1", surface.format(0.5))
-                    + box_collision("1 1 1", surface.format(0.7)),
-                ),
-                link("b"),
-                joint("a", "b", extra="<axis><dynamics><spring_stiffness>5</spring_stiffness>" "</dynamics></axis>"),
-            )
-        )
-    )
-    assert robot.surfaces["a"].mu1 == 0.7
-    for expected in (
-        "<kinematic> is not supported",
-        "different <surface> values",
-        "<spring_stiffness> is not supported",
-        "<self_collide> is not applied",
-    ):
-        assert any(expected in w for w in robot.warnings), expected
-
-
-def test_bad_surface_leaves_the_static_space_clean():
-    physics = PhysicsWorld()
-    text = sdf(
-        model(
-            "m",
-            link(
-                "a",
-                extra=box_collision("1 1 1")
-                + box_collision("1 1 1", "<surface><friction><ode><mu>-1</mu></ode></friction></surface>"),
-            ),
-            static=True,
-        )
-    )
-    with pytest.raises(ModelError, match=r"link 'a'.*friction/ode/mu"):  # the parser refuses it (issue 14)
-        parse_sdf_model(text)
-    robot = parse_sdf_model(text.replace("<mu>-1</mu>", "<mu>1</mu>"))
-    robot.surfaces["a"] = GazeboSurface(mu1=-1.0)  # past the parser: the builder must still clean up
-    with pytest.raises(ValueError, match="mu"):
-        build_model(physics, robot)
-    assert physics.static_space.getNumGeoms() == 0
-
-
-def test_world_errors():
-    with pytest.raises(ModelError, match="two models are named 'm'"):
-        parse_sdf_world(sdf(f'<world name="w">{model("m", link("a"))}{model("m", link("a"))}' f"</world>"))
-    for physics, message in (
-        ("<max_step_size>0</max_step_size>", "must be > 0"),
-        ("<ode><solver><iters>2.5</iters></solver></ode>", "positive integer"),
-    ):
-        with pytest.raises(ModelError, match=message):
-            parse_sdf_world(sdf(f'<world name="w"><physics type="ode">{physics}</physics></world>'))
-    with pytest.raises(ModelError, match="quick or world"):
-        parse_sdf_world(
-            sdf('<world name="w"><physics type="ode"><ode><solver><type>pgs</type>' "</solver></ode></physics></world>")
-        )
-
-
-def test_a_world_without_gravity_gets_sdfs_default():
-    """Issue 14: SDF's -9.8 as Gazebo gives it, not the simulator's own -9.81; a given <gravity> wins."""
-    assert parse_sdf_world(sdf('<world name="w"></world>')).physics.apply(PhysicsParams()).gravity == (0, 0, -9.8)
-    given = parse_sdf_world(sdf('<world name="w"><gravity>0 0 -9.81</gravity></world>'))
-    assert given.physics.apply(PhysicsParams()).gravity == (0.0, 0.0, -9.81)
-
-
 def test_nested_models_are_flattened_with_gazebos_scoped_names():
     """Issue 14: a nested model's links and joints join the outer model as 'inner::name', posed in its frame."""
     inner = (
@@ -599,14 +266,3 @@ def test_nested_models_are_flattened_with_gazebos_scoped_names():
     b = built.link_pose("inner::b")[0]
     assert b == pytest.approx((1.0, 0.5, 2.0), abs=1e-9)  # inner turned 90 degrees: its x is the world's y
     assert built.link_pose("inner::deep::c")[0] == pytest.approx((1.0, 0.0, 3.0), abs=1e-9)
-
-
-def test_a_world_model_with_a_nested_model_spawns_as_one_model():
-    from turtle_sim_ode.world.simulation import Simulation
-
-    nested = model("table", link("top", "0 0 0.5 0 0 0"), '<model name="leg">' + link("foot") + "</model>", static=True)
-    sim = Simulation()
-    sim.load_world(parse_sdf_world(sdf(f'<world name="w">{nested}</world>')))
-    assert list(sim.models) == ["table"]
-    assert set(sim.models["table"].robot.links) == {"top", "leg::foot"}
-    sim.get_link_state("table::leg::foot")  # Gazebo's scoped name resolves

@@ -80,8 +80,5 @@ def main() -> int:
     except ConfigError as error:
         rospy.logfatal("cmd_vel_mux: %s", error)
         return 1
-    try:
-        rospy.spin()
-    except rospy.ROSInterruptException:
-        pass
+    rospy.spin()  # returns at shutdown; it raises no ROSInterruptException (rospy/client.py, spin)
     return 0

@@ -66,7 +66,7 @@ class CameraSensor(MountedSensor):
         threads: Optional[int] = None,
     ) -> None:
         """``sun_direction`` (the world's directional light) and ``sky`` default to Gazebo's; ``ray_kernel``: cast
-        the rays in C (src/ray_kernel.c) when the library is built, else with numpy; ``threads``: the C kernel's
+        the rays in C (src/ray_camera.c) when the library is built, else with numpy; ``threads``: the C kernel's
         (default: every CPU the process may use)."""
         super().__init__(physics, model, config, rng)
         width, height = config.width, config.height

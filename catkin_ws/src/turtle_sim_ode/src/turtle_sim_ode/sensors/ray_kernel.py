@@ -1,6 +1,6 @@
-"""ctypes binding of the cameras' ray caster (src/ray_kernel.c, built by catkin as libturtle_sim_ode_rays.so): the
-same ray tests as sensors.raycast, one pixel at a time in C. Where the library is not built, ``library()`` is None
-and the cameras cast their rays with numpy."""
+"""ctypes binding of the cameras' and lidars' ray caster (src/ray_*.c, one file a part, see src/ray_kernel.h; built by
+catkin as libturtle_sim_ode_rays.so): the same ray tests as sensors.raycast, one pixel at a time in C. Where the
+library is not built, ``library()`` is None and the cameras cast their rays with numpy."""
 from __future__ import annotations
 
 import ctypes
@@ -16,7 +16,7 @@ from turtle_sim_ode.physics.contact_kernel import find_library
 from turtle_sim_ode.models.description import Box, Cylinder, Geometry, Sphere
 
 LIBRARY = "libturtle_sim_ode_rays.so"
-STRIDE = 20  # doubles per primitive row (see src/ray_kernel.c)
+STRIDE = 20  # doubles per primitive row (see src/ray_kernel.h)
 BOX, SPHERE, CYLINDER, CAPSULE, PLANE = range(5)
 RGB = Tuple[float, float, float]
 
@@ -122,7 +122,7 @@ def usable_cpus() -> int:
 
 
 class Mesh(ctypes.Structure):
-    """src/ray_kernel.c's Mesh."""
+    """src/ray_kernel.h's Mesh."""
 
     _fields_ = [
         ("pose", ctypes.POINTER(ctypes.c_double)),
