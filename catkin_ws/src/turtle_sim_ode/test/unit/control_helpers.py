@@ -9,6 +9,7 @@ from turtle_sim_ode.control.hardware import DefaultRobotHWSim
 from turtle_sim_ode.control.manager import ControllerManager
 from turtle_sim_ode.control.transmissions import read_transmissions
 from turtle_sim_ode.models.urdf import parse_urdf
+from turtle_sim_ode.physics.settings import PhysicsParams
 
 MODELS = PACKAGE_ROOT / "test" / "models"
 ARM_URDF = (MODELS / "two_link_arm.urdf").read_text()
@@ -76,14 +77,22 @@ class Rig:
         assert self.manager.switch([name], [], 2), self.log
 
 
-def simulated(urdf: str, name: str, z: float, controllers: dict, robot_params: Optional[dict] = None):
-    """A Simulation with the model spawned at height z and its ros_control stepped before every physics step, the
-    controllers loaded and started, ``robot_params`` the robot namespace's parameters: (simulation, RosControl)."""
+def simulated(
+    urdf: str,
+    name: str,
+    z: float,
+    controllers: dict,
+    robot_params: Optional[dict] = None,
+    physics: Optional[PhysicsParams] = None,
+):
+    """A Simulation (with ``physics``, default: PhysicsParams()) with the model spawned at height z and its ros_control
+    stepped before every physics step, the controllers loaded and started, ``robot_params`` the robot namespace's
+    parameters: (simulation, RosControl)."""
     from turtle_sim_ode.control.ode_joint import OdeSimJoint
     from turtle_sim_ode.control.plugin import RosControl, RosControlConfig
     from turtle_sim_ode.world.simulation import Simulation
 
-    sim = Simulation()
+    sim = Simulation(physics)
     sim.spawn_urdf(name, urdf, (0.0, 0.0, z, 0.0, 0.0, 0.0))
     model = sim.models[name]
     config = RosControlConfig.read({}, name, sim.physics.time_step)
