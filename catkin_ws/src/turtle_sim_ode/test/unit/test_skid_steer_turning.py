@@ -140,7 +140,9 @@ def test_the_courses_smb_wheels_drive_and_steer_under_the_explicit_velocity_pid(
     friction; LH has none at all) its loop chatters between the effort limits, as default_robot_hw_sim.cpp writeSim's
     explicit loop on gazebo-classic's ODE (ODEJoint::SetForce, no implicit joint damping without
     <implicitSpringDamper>) must. Measured: 1.38 m straight, 1.25 m and 1.79 rad at 0.5 rad/s in 4 s (the
-    commanded 2 m, 2 rad). It still steers while it drives; it loses about a third of its way to the chatter."""
+    commanded 2 m, 2 rad). It still steers while it drives; it loses about a third of its way to the chatter. The
+    frictionless LH chatters in Gazebo too and shakes the others loose; with smb_common's later friction 0.7 on every
+    wheel they roll and settle (test_smb_course_numbers.py: 1.96 m)."""
     sim, control = simulated(SMB_COURSE, "smb", 0.4, {"smb_velocity_controller": COURSE_DIFF_DRIVE}, PID_GAINS)
     controller = control.manager.find("smb_velocity_controller").controller
     yaw_and_path(sim, lambda now: None, 1.0)
