@@ -14,6 +14,18 @@ from turtle_sim_ode.physics.settings import PhysicsParams
 MODELS = PACKAGE_ROOT / "test" / "models"
 ARM_URDF = (MODELS / "two_link_arm.urdf").read_text()
 BASE_URDF = (MODELS / "four_wheel_base.urdf").read_text()
+SMB_WHEELS = ("LF_WHEEL_JOINT", "RF_WHEEL_JOINT", "LH_WHEEL_JOINT", "RH_WHEEL_JOINT")
+# the course's control.yaml (smb_control): gazebo_ros_control/pid_gains/<wheel>/p
+SMB_PID_GAINS = {"gazebo_ros_control": {"pid_gains": {wheel: {"p": 100.0} for wheel in SMB_WHEELS}}}
+# smb_common_v2's control.yaml: smb_velocity_controller on all four wheels, no limits (its linear/angular limits sit
+# under gazebo_ros_control, where diff_drive_controller never reads them)
+SMB_DIFF_DRIVE = {
+    "type": "diff_drive_controller/DiffDriveController",
+    "left_wheel": ["LF_WHEEL_JOINT", "LH_WHEEL_JOINT"],
+    "right_wheel": ["RF_WHEEL_JOINT", "RH_WHEEL_JOINT"],
+    "cmd_vel_timeout": 10.0,
+    "enable_odom_tf": False,
+}
 
 
 class InertiaJoint:

@@ -42,31 +42,20 @@ from pathlib import Path
 from typing import Dict, List
 
 from conftest import PACKAGE_ROOT
-from control_helpers import simulated
+from control_helpers import SMB_DIFF_DRIVE, SMB_PID_GAINS, SMB_WHEELS, simulated
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from turtle_sim_ode.physics.settings import PhysicsParams
 
 SMB_COURSE = (Path(PACKAGE_ROOT) / "test" / "models" / "smb_course_wheels.urdf").read_text()
-WHEELS = ("LF_WHEEL_JOINT", "RF_WHEEL_JOINT", "LH_WHEEL_JOINT", "RH_WHEEL_JOINT")
 COURSE_FRICTION = 0.7  # smb_common smb.urdf.xacro since "Fix friction coefficients for gazebo simulation"
-P_GAIN = 100.0  # smb_control gazebo_control.yaml
-PID_GAINS = {"gazebo_ros_control": {"pid_gains": {wheel: {"p": P_GAIN} for wheel in WHEELS}}}
+P_GAIN = SMB_PID_GAINS["gazebo_ros_control"]["pid_gains"]["LF_WHEEL_JOINT"]["p"]  # smb_control gazebo_control.yaml
 DAMPING = 1.0  # smb.urdf.xacro <dynamics damping>
 EFFORT_LIMIT = 100.0  # smb.urdf.xacro <limit effort>
 WHEEL_IZZ = 0.049
 WHEEL_RADIUS = 0.14
 STEP = 0.001
-# smb_common_v2's control.yaml: smb_velocity_controller on all four wheels, no limits (its linear/angular limits sit
-# under gazebo_ros_control, where diff_drive_controller never reads them)
-DIFF_DRIVE = {
-    "type": "diff_drive_controller/DiffDriveController",
-    "left_wheel": ["LF_WHEEL_JOINT", "LH_WHEEL_JOINT"],
-    "right_wheel": ["RF_WHEEL_JOINT", "RH_WHEEL_JOINT"],
-    "cmd_vel_timeout": 10.0,
-    "enable_odom_tf": False,
-}
 DRIVE_TIME = 4.0  # s of sim time, as the course drives it: 0.5 m/s for 4 s, "about 2 m"
 SETTLE_TIME = 1.0  # spawned 0.4 m up, as smb_gazebo.launch spawns it
 DISTANCE_TOLERANCE = 0.1  # of the commanded distance
@@ -85,20 +74,20 @@ def drive(linear: float, angular: float, physics: PhysicsParams = None, z: float
     """The course's SMB on diff_drive_controller: settled, then (linear, angular) held for DRIVE_TIME. Returns the
     displacement of base_link and each wheel's velocities over the last second."""
     urdf = with_course_friction(SMB_COURSE).replace('<fdir1 value="1 0 0"/>', '<fdir1 value="%s"/>' % fdir1)
-    sim, control = simulated(urdf, "smb", z, {"smb_velocity_controller": DIFF_DRIVE}, PID_GAINS, physics)
-    assert {control.hw.control_method(wheel) for wheel in WHEELS} == {"VELOCITY_PID"}
+    sim, control = simulated(urdf, "smb", z, {"smb_velocity_controller": SMB_DIFF_DRIVE}, SMB_PID_GAINS, physics)
+    assert {control.hw.control_method(wheel) for wheel in SMB_WHEELS} == {"VELOCITY_PID"}
     controller = control.manager.find("smb_velocity_controller").controller
     model = sim.models["smb"]
     for _ in range(round(SETTLE_TIME / STEP)):
         sim.step()
     (x0, y0, _), _ = model.link_pose("base_link")
-    last_second: Dict[str, List[float]] = {wheel: [] for wheel in WHEELS}
+    last_second: Dict[str, List[float]] = {wheel: [] for wheel in SMB_WHEELS}
     steps = round(DRIVE_TIME / STEP)
     for step in range(steps):
         controller._on_cmd_vel((linear, angular))
         sim.step()
         if step >= steps - round(1.0 / STEP):
-            for wheel in WHEELS:
+            for wheel in SMB_WHEELS:
                 last_second[wheel].append(model.joint(wheel).rate())
     (x1, y1, _), _ = model.link_pose("base_link")
     return math.hypot(x1 - x0, y1 - y0), last_second
