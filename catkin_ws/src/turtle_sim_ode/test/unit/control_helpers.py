@@ -9,10 +9,23 @@ from turtle_sim_ode.control.hardware import DefaultRobotHWSim
 from turtle_sim_ode.control.manager import ControllerManager
 from turtle_sim_ode.control.transmissions import read_transmissions
 from turtle_sim_ode.models.urdf import parse_urdf
+from turtle_sim_ode.physics.settings import PhysicsParams
 
 MODELS = PACKAGE_ROOT / "test" / "models"
 ARM_URDF = (MODELS / "two_link_arm.urdf").read_text()
 BASE_URDF = (MODELS / "four_wheel_base.urdf").read_text()
+SMB_WHEELS = ("LF_WHEEL_JOINT", "RF_WHEEL_JOINT", "LH_WHEEL_JOINT", "RH_WHEEL_JOINT")
+# the course's control.yaml (smb_control): gazebo_ros_control/pid_gains/<wheel>/p
+SMB_PID_GAINS = {"gazebo_ros_control": {"pid_gains": {wheel: {"p": 100.0} for wheel in SMB_WHEELS}}}
+# smb_common_v2's control.yaml: smb_velocity_controller on all four wheels, no limits (its linear/angular limits sit
+# under gazebo_ros_control, where diff_drive_controller never reads them)
+SMB_DIFF_DRIVE = {
+    "type": "diff_drive_controller/DiffDriveController",
+    "left_wheel": ["LF_WHEEL_JOINT", "LH_WHEEL_JOINT"],
+    "right_wheel": ["RF_WHEEL_JOINT", "RH_WHEEL_JOINT"],
+    "cmd_vel_timeout": 10.0,
+    "enable_odom_tf": False,
+}
 
 
 class InertiaJoint:
@@ -76,14 +89,22 @@ class Rig:
         assert self.manager.switch([name], [], 2), self.log
 
 
-def simulated(urdf: str, name: str, z: float, controllers: dict, robot_params: Optional[dict] = None):
-    """A Simulation with the model spawned at height z and its ros_control stepped before every physics step, the
-    controllers loaded and started, ``robot_params`` the robot namespace's parameters: (simulation, RosControl)."""
+def simulated(
+    urdf: str,
+    name: str,
+    z: float,
+    controllers: dict,
+    robot_params: Optional[dict] = None,
+    physics: Optional[PhysicsParams] = None,
+):
+    """A Simulation (with ``physics``, default: PhysicsParams()) with the model spawned at height z and its ros_control
+    stepped before every physics step, the controllers loaded and started, ``robot_params`` the robot namespace's
+    parameters: (simulation, RosControl)."""
     from turtle_sim_ode.control.ode_joint import OdeSimJoint
     from turtle_sim_ode.control.plugin import RosControl, RosControlConfig
     from turtle_sim_ode.world.simulation import Simulation
 
-    sim = Simulation()
+    sim = Simulation(physics)
     sim.spawn_urdf(name, urdf, (0.0, 0.0, z, 0.0, 0.0, 0.0))
     model = sim.models[name]
     config = RosControlConfig.read({}, name, sim.physics.time_step)

@@ -15,7 +15,8 @@ ROBOT_SIM_TYPES = ("gazebo_ros_control/DefaultRobotHWSim",)
 # Timestamps within this of the control period count as a full period (sim time is a sum of float steps).
 TIME_EPSILON = 1e-9
 # DefaultRobotHWSim::writeSim applies a VELOCITY_PID's effort explicitly, from the velocity read before the step: on a
-# joint that moves only its own inertia I (a slipping wheel) the loop diverges once p * step / I reaches 2.
+# joint that moves only its own inertia I (a slipping or lifted wheel) the loop diverges once p * step / I reaches 2; a
+# wheel rolling on the ground moves its share of the robot too (test/unit/test_smb_course_numbers.py).
 EXPLICIT_LOOP_LIMIT = 2.0
 
 
@@ -75,8 +76,9 @@ def unstable_velocity_pids(hw: DefaultRobotHWSim, inertias: Mapping[str, float],
         if hw.joints[name].interface == VELOCITY and ratio >= EXPLICIT_LOOP_LIMIT:
             warnings.append(
                 f"joint '{name}': pid_gains p {pid.gains.p:g} at {time_step:g} s steps on its {inertias[name]:.3g} kg m^2 "
-                f"(p dt / I = {ratio:.2f} >= {EXPLICIT_LOOP_LIMIT:g}): once it slips its velocity loop chatters between "
-                "the effort limits (DefaultRobotHWSim's explicit PID; a skid steer then hardly drives or steers)"
+                f"(p dt / I = {ratio:.2f} >= {EXPLICIT_LOOP_LIMIT:g}): while it slips or is off the ground its "
+                "velocity loop chatters between the effort limits (DefaultRobotHWSim's explicit PID, as in Gazebo; "
+                "rolling, the wheel carries its share of the robot and settles)"
             )
     return warnings
 
