@@ -123,6 +123,7 @@ class UpstreamLike(unittest.TestCase):
 
 class Mixed(unittest.TestCase):
     __test__ = False
+
     def test_passes(self):
         pass
 
