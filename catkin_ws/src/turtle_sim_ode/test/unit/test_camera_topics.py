@@ -17,6 +17,7 @@ from test_camera import WAFFLE, camera_world
 from turtle_sim_ode.ros import camera_topics, periodic
 from turtle_sim_ode.ros.wire import joined
 from turtle_sim_ode.sensors.config import read_sensors
+from turtle_sim_ode.sensors.trigger import TRIGGERED_FRAME_DELAY_S
 
 
 class FakePublisher:
@@ -222,35 +223,39 @@ def test_bayer_mosaics_sample_the_channels_as_gazebo_does(encoding, layout) -> N
             assert mosaic[row, column] == value[layout[row % 2][column % 2]], (row, column)
 
 
-def test_a_triggered_frame_is_taken_at_its_step_and_sent_after_its_rendering_time(monkeypatch) -> None:
-    """GazeboRosTriggeredCamera: a frame a trigger. Here the frame shows (and is stamped with) the step after the
-    trigger and reaches subscribers once sim time has moved on by its rendering's wall time x the real-time factor
-    (ros/plugins/camera.py), as from a renderer running beside the physics."""
+def test_a_triggered_frame_is_taken_at_its_step_and_sent_a_fixed_sim_time_later(monkeypatch) -> None:
+    """GazeboRosTriggeredCamera: a frame a trigger, none untriggered. Here the frame shows (and is stamped with) the
+    first step after the trigger and reaches subscribers TRIGGERED_FRAME_DELAY_S of sim time later, whatever the
+    rendering's wall time (sensors.trigger); after each rendering the node is told not to catch its wall time up."""
     from turtle_sim_ode.ros.plugins import camera as camera_plugin
 
     FakePublisher.made = {}
     monkeypatch.setattr(periodic, "PackedPublisher", FakePublisher)
     monkeypatch.setattr(camera_plugin, "subscriber", lambda *args: None)
     monkeypatch.setattr(camera_plugin, "release", lambda handle: None)
-    clock = iter([10.0, 10.08, 20.0, 20.08])  # wall time: each rendering takes 80 ms
-    monkeypatch.setattr(camera_plugin.time, "monotonic", lambda: next(clock))
     sim, camera = camera_world(kind="camera", plugin="libgazebo_ros_camera.so", width=16, height=12)
-    triggered = camera_plugin.TriggeredCameraPublisher(camera, sim.scene, "", real_time_factor=lambda: 0.5)
+    paced_from = []  # sim time stood still for each rendering: the node paces on from its end
+    triggered = camera_plugin.TriggeredCameraPublisher(
+        camera, sim.scene, "", pace_from_now=lambda: paced_from.append(triggered.rendered)
+    )
     images = FakePublisher.made["cam/image_raw"]
     images.connections = 1
+    delay = TRIGGERED_FRAME_DELAY_S
 
     def step(now: float) -> None:
         triggered.publish(periodic.sim_stamp(now), now)
 
     step(1.0)  # no trigger: nothing rendered
-    triggered._on_trigger(None)
-    triggered._on_trigger(None)
-    step(1.001)  # the first frame rendered, held until 1.001 + 0.08 x 0.5
+    triggered.frames.trigger()
+    triggered.frames.trigger()
+    step(1.001)  # the first frame rendered, held until 1.001 + delay
     step(1.002)  # the second
-    step(1.040)
+    step(1.0005 + delay)
     assert triggered.rendered == 2 and images.messages == []
-    step(1.041)
-    step(1.042)
+    step(1.001 + delay)
+    assert [message.header.stamp.to_sec() for message in images.messages] == pytest.approx([1.001])
+    step(1.002 + delay)
     assert [message.header.stamp.to_sec() for message in images.messages] == pytest.approx([1.001, 1.002])
     step(1.5)
     assert triggered.rendered == 2 and len(images.messages) == 2  # a frame a trigger
+    assert paced_from == [1, 2]

@@ -71,7 +71,7 @@ def _git_dir(location: str) -> Optional[str]:
 
 def find_upstream(env_var: str, url: str, cache: str, ref: str) -> Tuple[Optional[UpstreamSource], str]:
     """The upstream repository: where ``env_var`` points, else a mirror in ``cache`` (cloned from ``url`` now if
-    missing). (None, why) where neither is there."""
+    missing). (None, why and how to provide it) where neither is there: the same text for every test of ``url``."""
     location = os.environ.get(env_var, "")
     if location:
         return UpstreamSource(location, ref), f"${env_var} ({location})"
@@ -84,8 +84,21 @@ def find_upstream(env_var: str, url: str, cache: str, ref: str) -> Tuple[Optiona
                 timeout=GIT_TIMEOUT,
             )
         except (subprocess.SubprocessError, OSError) as error:
-            return None, f"${env_var} is not set and {url} cannot be cloned into {cache} ({error})"
+            return None, (
+                f"no upstream source of {url}: ${env_var} is not set and it cannot be cloned into {cache}"
+                f" ({_failure(error)}); set {env_var} to a checkout or git mirror of it"
+                f" (git clone --mirror {url} DIR) or put that mirror at {cache}"
+            )
     return UpstreamSource(cache, ref), f"mirror {cache}"
+
+
+def _failure(error: Exception) -> str:
+    """Why git failed, in one line: its last line of stderr, or the error."""
+    if isinstance(error, subprocess.TimeoutExpired):
+        return f"no answer in {error.timeout:g} s"
+    stderr = getattr(error, "stderr", None) or b""
+    lines = stderr.decode(errors="replace").strip().splitlines()
+    return lines[-1] if lines else str(error)
 
 
 @dataclass(frozen=True)
@@ -157,10 +170,12 @@ class ScratchPackage:
 
 @dataclass
 class Results:
-    """What rostest's JUnit files say: tests run, and the names of the failed or erroring ones with their text."""
+    """What rostest's JUnit files say: test cases run (a skipped one not), the names of the failed or erroring ones
+    with their text, and the names of the skipped ones with their reason."""
 
     tests: int = 0
     failed: List[str] = field(default_factory=list)
+    skipped: List[str] = field(default_factory=list)
 
 
 def read_results(folder: str) -> Results:
@@ -172,10 +187,16 @@ def read_results(folder: str) -> Results:
                 continue
             root = ElementTree.parse(os.path.join(directory, name)).getroot()
             for case in root.iter("testcase"):
+                label = f"{name}: {case.get('classname')}.{case.get('name')}"
+                skip = case.find("skipped")
+                if skip is not None or case.get("result") == "skipped":
+                    reason = skip.get("message") if skip is not None else ""
+                    results.skipped.append(f"{label}: {reason or 'skipped'}")
+                    continue
                 results.tests += 1
                 for problem in list(case.findall("failure")) + list(case.findall("error")):
                     text = (problem.get("message") or "") + (problem.text or "")
-                    results.failed.append(f"{name}: {case.get('classname')}.{case.get('name')}: {text.strip()}")
+                    results.failed.append(f"{label}: {text.strip()}")
     return results
 
 

@@ -49,8 +49,12 @@ def test_a_work_tree_and_its_git_directory_give_the_same_files(upstream: Path) -
 
 def test_no_repository_is_said_so(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.delenv("UPSTREAM_TEST_REPO", raising=False)
-    source, why = find_upstream("UPSTREAM_TEST_REPO", str(tmp_path / "nowhere"), str(tmp_path / "cache"), "HEAD")
+    cache = str(tmp_path / "cache")
+    source, why = find_upstream("UPSTREAM_TEST_REPO", str(tmp_path / "nowhere"), cache, "HEAD")
     assert source is None and "$UPSTREAM_TEST_REPO is not set" in why
+    # what is missing and how to provide it, in one line alike for every test of the repository (summarized once)
+    assert "set UPSTREAM_TEST_REPO to a checkout or git mirror" in why and cache in why and "\n" not in why
+    assert find_upstream("UPSTREAM_TEST_REPO", str(tmp_path / "nowhere"), cache, "HEAD") == (None, why)
     with pytest.raises(FileNotFoundError):
         UpstreamSource(str(tmp_path / "nowhere"))
 
@@ -73,7 +77,7 @@ def test_the_scratch_package_holds_upstreams_files_and_its_own_build(upstream: P
     assert [depend.text for depend in manifest.findall("depend")] == ["roscpp", "image_transport"]
 
 
-def test_results_count_cases_and_name_the_failed(tmp_path: Path) -> None:
+def test_results_count_cases_run_and_name_the_failed_and_skipped(tmp_path: Path) -> None:
     (tmp_path / "rostest-a.xml").write_text(
         '<testsuite><testcase classname="x.T" name="ok"/>'
         '<testcase classname="x.T" name="bad"><failure message="boom">trace</failure></testcase></testsuite>'
@@ -83,9 +87,14 @@ def test_results_count_cases_and_name_the_failed(tmp_path: Path) -> None:
         '<testsuites><testsuite><testcase classname="y" name="e">'
         '<error message="crash"/></testcase></testsuite></testsuites>'
     )
+    (tmp_path / "c.xml").write_text(
+        '<testsuite><testcase classname="z" name="s"><skipped message="not here"/></testcase>'
+        '<testcase classname="z" name="g" status="run" result="skipped"/></testsuite>'
+    )
     results = read_results(str(tmp_path))
-    assert results.tests == 3
+    assert results.tests == 3  # the skipped cases did not run
     assert sorted(results.failed) == ["b.xml: y.e: crash", "rostest-a.xml: x.T.bad: boomtrace"]
+    assert results.skipped == ["c.xml: z.s: not here", "c.xml: z.g: skipped"]
 
 
 def test_the_shell_command_quotes_its_words() -> None:

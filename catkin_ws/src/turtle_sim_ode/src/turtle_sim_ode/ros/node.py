@@ -120,7 +120,10 @@ class SimulatorNode:
         publishes_tf = plugins is not None and any(broadcasts_tf(drive) for drive in plugins.drives)
         if self._tf is None and self.settings.publish_tf and publishes_tf:
             self._tf = PackedPublisher("/tf", TFMessage)
-        interfaces = model_interfaces(name, self.sim, self.settings, self._tf, robot_namespace, check_topic)
+        # pace_from_now: the run loop re-anchors its pacing after the step (see _run_paced), not catching it up.
+        interfaces = model_interfaces(
+            name, self.sim, self.settings, self._tf, robot_namespace, check_topic, self._wake.set
+        )
         self.interfaces[name] = interfaces
         for interface in interfaces:
             interface.restart(self.sim.sim_time)

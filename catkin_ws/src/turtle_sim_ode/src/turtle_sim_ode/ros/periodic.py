@@ -96,13 +96,16 @@ def subscriber(topic: str, msg_type: type, callback: Callable[[Any], None], queu
 @dataclass
 class ModelContext:
     """What a plugin's ROS adapter (ros.plugins) is made with: the model's name, the simulation (the model is
-    ``sim.models[name]``), the node's settings and tf broadcaster, and the spawn's robot namespace ("": none)."""
+    ``sim.models[name]``), the node's settings and tf broadcaster, the spawn's robot namespace ("": none), and
+    ``pace_from_now``: called in a step whose wall time sim time should not catch up afterwards (work that Gazebo
+    does beside its physics, such as rendering a triggered frame), so the run loop paces on from the step's end."""
 
     name: str
     sim: Simulation
     settings: SimulatorSettings
     tf_broadcaster: PackedPublisher
     namespace: str
+    pace_from_now: Callable[[], None] = lambda: None
 
     @property
     def model(self) -> BuiltModel:

@@ -106,16 +106,19 @@ def model_interfaces(
     tf_broadcaster: PackedPublisher,
     namespace: str,
     check_topic: Optional[TopicCheck] = None,
+    pace_from_now: Callable[[], None] = lambda: None,
 ) -> List[Periodic]:
     """Every ROS publisher and subscriber the plugins of model `name` ask for (call under the world lock), each
-    topic first shown to ``check_topic``. All or nothing: if one fails, those opened so far are closed again."""
+    topic first shown to ``check_topic``, ``pace_from_now`` as ModelContext has it. All or nothing: if one fails,
+    those opened so far are closed again."""
     interfaces: List[Periodic] = []
     Advertising.check, Advertising.opened = check_topic, []
     plugins = sim.plugins.get(name)
     try:
         grouped: Dict[type, Tuple[List[ModelContext], List[object]]] = {}
         for config in plugins.configs if plugins is not None else []:
-            context = ModelContext(name, sim, settings, tf_broadcaster, plugin_namespace(namespace, config))
+            own_namespace = plugin_namespace(namespace, config)
+            context = ModelContext(name, sim, settings, tf_broadcaster, own_namespace, pace_from_now)
             if type(config) in GROUPED:
                 contexts, configs = grouped.setdefault(type(config), ([], []))
                 contexts.append(context)
