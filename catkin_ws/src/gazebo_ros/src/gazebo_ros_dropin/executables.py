@@ -100,10 +100,7 @@ def run_client(
     ignored = [arg for arg in argv if ":=" not in arg]
     if ignored:
         rospy.logwarn("gzclient: arguments %s ignored: the viewer is rviz on the world", ignored)
-    try:
-        rospy.spin()
-    except rospy.ROSInterruptException:
-        pass
+    rospy.spin()  # returns at shutdown; it raises no ROSInterruptException (rospy/client.py, spin)
     return 0
 
 
