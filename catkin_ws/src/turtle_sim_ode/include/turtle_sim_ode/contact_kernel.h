@@ -59,6 +59,13 @@ extern "C"
   int tso_kernel_collide(TsoContactKernel* kernel);
   /* The contacts touching watched geoms found by the last collide; *count is set to their number. */
   const TsoWatchedContact* tso_kernel_watched(const TsoContactKernel* kernel, int* count);
+  /* The one hinge joint between bodies a and b (either may be 0, the world; in either order), or 0 when there is
+   * none or more than one. */
+  dJointID tso_hinge_between(dBodyID a, dBodyID b);
+  /* Turn counting of continuous joints after a step (models.built.JointHandle.track_turns for each): the change of
+   * each hinge's [-pi, pi] angle since last[i], taken across the wrap, is added to unwrapped[i]; last[i] becomes the
+   * angle. */
+  void tso_count_turns(int count, const dJointID* hinges, double* last, double* unwrapped);
 
 #ifdef __cplusplus
 }

@@ -22,6 +22,7 @@ from turtle_sim_ode.models.transforms import (
     quat_rotate,
 )
 from turtle_sim_ode.models.description import RobotModel
+from turtle_sim_ode.physics.joint_turns import TurnCounter
 from turtle_sim_ode.physics.trimesh import remove_geom
 from turtle_sim_ode.physics.world import PhysicsWorld
 
@@ -43,7 +44,7 @@ class LinkFrame:
 class JointHandle:
     """A non-fixed URDF joint: position and velocity with URDF sign conventions."""
 
-    __slots__ = ("name", "type", "joint", "_read_wrapped", "_last_wrapped", "_unwrapped")
+    __slots__ = ("name", "type", "joint", "_read_wrapped", "_last_wrapped", "_unwrapped", "_counter", "_slot")
 
     def __init__(self, name: str, joint_type: str, joint: ode.Joint) -> None:
         self.name = name
@@ -52,11 +53,18 @@ class JointHandle:
         self._read_wrapped = joint.getAngle if joint_type == "continuous" else None
         self._last_wrapped = 0.0
         self._unwrapped = 0.0
+        self._counter: Optional[TurnCounter] = None  # counting the turns in C instead, in slot _slot
+        self._slot = 0
+
+    def count_in(self, counter: TurnCounter, slot: int) -> None:
+        """Count the turns of this continuous joint in ``counter``'s ``slot`` from now on."""
+        counter.last[slot], counter.unwrapped[slot] = self._last_wrapped, self._unwrapped
+        self._counter, self._slot = counter, slot
 
     def angle(self) -> float:
         """Joint position (rad or m); continuous joints are unwrapped (multi-turn)."""
         if self.type == "continuous":
-            return self._unwrapped
+            return self._unwrapped if self._counter is None else self._counter.unwrapped[self._slot]
         if self.type == "prismatic":
             return self.joint.getPosition()
         return self.joint.getAngle()
@@ -88,6 +96,9 @@ class JointHandle:
 
     def track_turns(self) -> None:
         """Accumulate ODE's [-pi, pi] hinge angle; called after every step."""
+        if self._counter is not None:
+            self._counter.count_one(self._slot)
+            return
         wrapped = self._read_wrapped()
         delta = wrapped - self._last_wrapped
         if delta > math.pi:
@@ -103,10 +114,19 @@ class JointHandle:
         if self._read_wrapped is not None:
             self._unwrapped = position
             self._last_wrapped = self._read_wrapped()
+            if self._counter is not None:
+                self.count_in(self._counter, self._slot)
 
 
-def _after_step_hook(continuous: List[JointHandle], damping: List[Tuple[JointHandle, float]]) -> Callable[[], None]:
+def _after_step_hook(
+    counter: Optional[TurnCounter], continuous: List[JointHandle], damping: List[Tuple[JointHandle, float]]
+) -> Callable[[], None]:
+    """Counting the turns of continuous joints (``counter``'s in C, then those of ``continuous`` apart) and adding the
+    damping torques."""
+
     def after_step() -> None:
+        if counter is not None:
+            counter.count()
         for handle in continuous:
             handle.track_turns()
         for handle, coefficient in damping:
@@ -157,14 +177,19 @@ class BuiltModel:
         self._physics = physics
         self._space: Optional[ode.SpaceBase] = space
         continuous = [j for j in joints.values() if j.type == "continuous"]
+        counter = physics.turn_counter([handle.joint for handle in continuous]) if continuous else None
+        if counter is not None:
+            for slot, handle in enumerate(continuous):
+                handle.count_in(counter, slot)
+            continuous = []
         # Shared with the hook: set_damping edits it in place.
         self._damping = damping
         self._hook: Optional[Callable[[], None]] = None
-        if continuous or damping:
+        if counter is not None or continuous or damping:
             # A closure, not a bound method: the world must not reference this model back,
             # since a reference cycle lets the garbage collector free PyODE objects in an
             # order that crashes.
-            self._hook = _after_step_hook(continuous, damping)
+            self._hook = _after_step_hook(counter, continuous, damping)
             physics.add_post_step_hook(self._hook)
 
     def _frame(self, link: str) -> LinkFrame:
@@ -266,7 +291,7 @@ class BuiltModel:
         if coefficient > 0:
             self._damping.append((handle, coefficient))
             if self._hook is None:  # no continuous joints, no damping until now
-                self._hook = _after_step_hook([], self._damping)
+                self._hook = _after_step_hook(None, [], self._damping)
                 self._physics.add_post_step_hook(self._hook)
 
     def set_mass(self, link: str, mass: float, com: Vec3, inertia: Matrix3) -> None:

@@ -88,6 +88,8 @@ def _declare(lib: ctypes.CDLL) -> ctypes.CDLL:
         "tso_kernel_collide": (integer, [pointer]),
         "tso_kernel_watched": (ctypes.POINTER(_WatchedContact), [pointer, ctypes.POINTER(ctypes.c_int)]),
         "dGeomGetBody": (pointer, [pointer]),  # libode's, found through the kernel's dependencies
+        "tso_hinge_between": (pointer, [pointer, pointer]),
+        "tso_count_turns": (None, [integer, pointers, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double)]),
     }
     for name, (restype, argtypes) in signatures.items():
         function = getattr(lib, name)
@@ -122,6 +124,10 @@ class ContactKernel:
             raise MemoryError("tso_kernel_create")
         self._count = ctypes.c_int()
         self._collide = lib.tso_kernel_collide
+
+    @property
+    def library(self) -> ctypes.CDLL:
+        return self._lib
 
     @classmethod
     def load(cls) -> Optional["ContactKernel"]:
@@ -181,6 +187,11 @@ class ContactKernel:
         body_id = self._lib.dGeomGetBody(probe._id())
         probe.setBody(None)
         return body_id
+
+    def hinge_id(self, joint: Any) -> int:
+        """The ODE id of a PyODE HingeJoint (PyODE gives joints no ``_id`` either): the one hinge between its bodies,
+        0 if there is more than one."""
+        return self._lib.tso_hinge_between(self.body_id(joint.getBody(0)), self.body_id(joint.getBody(1))) or 0
 
     def watched(self) -> List[WatchedPoint]:
         """Points of the last collide touching watched geoms."""

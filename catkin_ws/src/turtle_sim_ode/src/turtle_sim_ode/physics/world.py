@@ -7,6 +7,7 @@ from typing import Callable, Dict, Iterable, List, Optional, Sequence, Set, Tupl
 import ode
 
 from turtle_sim_ode.physics.contact_kernel import ContactKernel
+from turtle_sim_ode.physics.joint_turns import TurnCounter
 from turtle_sim_ode.physics.contacts import ContactWatch, WatchedContact, add_contact_joints
 from turtle_sim_ode.physics.settings import PhysicsParams, configure_world
 from turtle_sim_ode.physics.surfaces import ContactSurface, PairContact, SurfaceParams, combine_surfaces, ground_surface
@@ -217,6 +218,14 @@ class PhysicsWorld:
         self._jointed = {pair for pair in self._jointed if body not in pair}
         self._body_ids.pop(body, None)
         self._kernel_stale = True
+
+    def turn_counter(self, hinges: Sequence[ode.HingeJoint]) -> Optional[TurnCounter]:
+        """A counter of ``hinges``' turns in the contact kernel's library (slot i: hinges[i]), None on the Python path
+        or if a hinge's ODE id cannot be found."""
+        if self._kernel is None:
+            return None
+        ids = [self._kernel.hinge_id(hinge) for hinge in hinges]
+        return TurnCounter(self._kernel.library, ids, hinges) if all(ids) else None
 
     def add_pre_step_hook(self, hook: Callable[[], None]) -> None:
         """Call ``hook()`` right before every step's integration, once every force for it is added (e.g. to record
