@@ -89,7 +89,10 @@ def _declare(lib: ctypes.CDLL) -> ctypes.CDLL:
         "tso_kernel_watched": (ctypes.POINTER(_WatchedContact), [pointer, ctypes.POINTER(ctypes.c_int)]),
         "dGeomGetBody": (pointer, [pointer]),  # libode's, found through the kernel's dependencies
         "tso_hinge_between": (pointer, [pointer, pointer]),
-        "tso_count_turns": (None, [integer, pointers, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double)]),
+        "tso_count_turns": (
+            None,
+            [integer, pointers, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double)],
+        ),
     }
     for name, (restype, argtypes) in signatures.items():
         function = getattr(lib, name)
