@@ -420,7 +420,7 @@ const TsoWatchedContact* tso_kernel_watched(const TsoContactKernel* kernel, int*
   return kernel->watched;
 }
 
-dJointID tso_hinge_between(dBodyID a, dBodyID b)
+dJointID tso_joint_between(dBodyID a, dBodyID b, int type)
 {
   dBodyID from = a != NULL ? a : b;
   dJointID found = NULL;
@@ -432,10 +432,10 @@ dJointID tso_hinge_between(dBodyID a, dBodyID b)
   {
     dJointID joint = dBodyGetJoint(from, i);
     dBodyID first = dJointGetBody(joint, 0), second = dJointGetBody(joint, 1);
-    if (dJointGetType(joint) != dJointTypeHinge || !((first == a && second == b) || (first == b && second == a)))
+    if ((int)dJointGetType(joint) != type || !((first == a && second == b) || (first == b && second == a)))
       continue;
     if (found != NULL)
-      return NULL; /* two hinges between the same bodies: which is which cannot be told from here */
+      return NULL; /* two such joints between the same bodies: which is which cannot be told from here */
     found = joint;
   }
   return found;
@@ -458,5 +458,17 @@ void tso_count_turns(int count, const dJointID* hinges, double* last, double* un
       delta += kTwoPi;
     unwrapped[i] += delta;
     last[i] = wrapped;
+  }
+}
+
+void tso_damp_joints(int count, const dJointID* joints, const unsigned char* sliders, const double* coefficients)
+{
+  int i;
+  for (i = 0; i < count; ++i)
+  {
+    if (sliders[i])
+      dJointAddSliderForce(joints[i], -coefficients[i] * dJointGetSliderPositionRate(joints[i]));
+    else
+      dJointAddHingeTorque(joints[i], -coefficients[i] * dJointGetHingeAngleRate(joints[i]));
   }
 }

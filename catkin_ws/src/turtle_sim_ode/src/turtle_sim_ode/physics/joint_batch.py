@@ -1,10 +1,10 @@
-"""Continuous joints' turns counted in C after every step (src/contact_kernel.c's tso_count_turns), as
-models.built.JointHandle.track_turns counts them in Python, double for double: a 1000-link chain spent 12 % of its
-step counting turns in Python (issue #33)."""
+"""Per-joint work after every step done in C for all joints of a model at once (src/contact_kernel.c), double for
+double as models.built does it joint by joint in Python: continuous joints' turns counted (tso_count_turns; a
+1000-link chain spent 12 % of its step counting turns in Python, issue #33) and viscous damping (tso_damp_joints)."""
 from __future__ import annotations
 
 import ctypes
-from typing import Any, Sequence
+from typing import Any, Sequence, Tuple
 
 Doubles = ctypes.Array  # of ctypes.c_double
 
@@ -34,3 +34,20 @@ def _at(array: ctypes.Array, index: int) -> Any:
     """A pointer to ``array[index]``, typed as the array's elements."""
     kind = array._type_  # type: ignore[attr-defined]
     return ctypes.cast(ctypes.addressof(array) + index * ctypes.sizeof(kind), ctypes.POINTER(kind))
+
+
+class JointDamper:
+    """``apply()`` after each step: -coefficient x rate on each joint, a torque on a hinge, a force on a slider."""
+
+    def __init__(self, lib: Any, entries: Sequence[Tuple[int, bool, float]], joints: Sequence[Any]) -> None:
+        """``entries``: (joint id, is a slider, coefficient); ``joints``: their PyODE joints, kept alive here."""
+        size = max(1, len(entries))
+        self._joints = list(joints)
+        self._size = len(entries)
+        self._ids = (ctypes.c_void_p * size)(*(joint for joint, _, _ in entries))
+        self._sliders = (ctypes.c_ubyte * size)(*(int(slider) for _, slider, _ in entries))
+        self._coefficients = (ctypes.c_double * size)(*(coefficient for _, _, coefficient in entries))
+        self._damp = lib.tso_damp_joints
+
+    def apply(self) -> None:
+        self._damp(self._size, self._ids, self._sliders, self._coefficients)
