@@ -7,7 +7,8 @@ needed; each case is measured in turns with its baseline, and reported as a rati
 - 300 IMUs (libgazebo_ros_imu_sensor.so, update_rate 0: every step) on a TurtleBot's base_link, against the bare
   TurtleBot: the share of its real-time factor kept, and whether it keeps real time (RTF >= 1) in real-time mode;
 - a 1000-link chain of continuous joints (falling freely, high above the ground: its joints alone), against real
-  time.
+  time, and against its ODE world stepped by the solver alone (``OdeAlone``: the floor of any simulator on ODE with
+  Gazebo's solver settings, quickStep at 50 iterations).
 
 ``scaling_cost`` returns a dict for bench_sim's JSON; run alone (``python3 -m bench.scaling``
 in scripts/lib; ``--quick`` for a shorter run) it prints the table.
@@ -89,6 +90,19 @@ class NodeLoop:
                 self._next_due = self._earliest()
 
 
+class OdeAlone:
+    """A simulation's ODE world stepped by its solver alone: no collision, no turn counting, no plugins."""
+
+    def __init__(self, sim: Any) -> None:
+        self.sim = sim
+
+    def run(self, steps: int) -> None:
+        physics = self.sim.physics
+        solve, time_step = physics.world.quickStep, physics.time_step
+        for _ in range(steps):
+            solve(time_step)
+
+
 def turtlebot(extra: str = "") -> Any:
     from turtle_sim_ode.world.simulation import Simulation
 
@@ -109,7 +123,7 @@ def chain() -> Any:
     return sim
 
 
-def rtfs(loops: Sequence[NodeLoop], steps: Sequence[int], repeats: int) -> List[float]:
+def rtfs(loops: Sequence[Any], steps: Sequence[int], repeats: int) -> List[float]:
     """Each loop's best real-time factor over ``repeats`` runs of its ``steps``, in turns."""
     works: List[Callable[[], None]] = [lambda loop=loop, n=n: loop.run(n) for loop, n in zip(loops, steps)]
     return [
@@ -119,7 +133,10 @@ def rtfs(loops: Sequence[NodeLoop], steps: Sequence[int], repeats: int) -> List[
 
 def scaling_cost(steps: int = 3000, repeats: int = 3) -> Dict[str, Any]:
     bare, imus, links = NodeLoop(turtlebot()), NodeLoop(turtlebot(imu_block(IMUS, "base_link"))), NodeLoop(chain())
-    bare_rtf, imu_rtf, chain_rtf = rtfs([bare, imus, links], [steps, steps, max(100, steps // 20)], repeats)
+    chain_steps = max(100, steps // 20)
+    bare_rtf, imu_rtf, chain_rtf, ode_rtf = rtfs(
+        [bare, imus, links, OdeAlone(chain())], [steps, steps, chain_steps, chain_steps], repeats
+    )
     return {
         "time_step": bare.sim.physics.time_step,
         "imus": {
@@ -130,7 +147,13 @@ def scaling_cost(steps: int = 3000, repeats: int = 3) -> Dict[str, Any]:
             "rtf_share": imu_rtf / bare_rtf,
             "real_time_kept": min(1.0, imu_rtf),
         },
-        "chain": {"links": CHAIN_LINKS, "rtf": chain_rtf, "real_time_kept": min(1.0, chain_rtf)},
+        "chain": {
+            "links": CHAIN_LINKS,
+            "rtf": chain_rtf,
+            "real_time_kept": min(1.0, chain_rtf),
+            "rtf_ode_alone": ode_rtf,
+            "share_of_ode_alone": chain_rtf / ode_rtf,
+        },
     }
 
 
@@ -173,6 +196,8 @@ def table(result: Dict[str, Any]) -> List[str]:
         ),
         "%-44s RTF %7.3f  real time kept %.2f"
         % ("%d-link chain of continuous joints" % links["links"], links["rtf"], links["real_time_kept"]),
+        "%-44s RTF %7.3f  the chain keeps %.2f of it"
+        % ("  its ODE world, quickStep alone (50 iters)", links["rtf_ode_alone"], links["share_of_ode_alone"]),
     ]
 
 

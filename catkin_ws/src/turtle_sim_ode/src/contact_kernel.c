@@ -419,3 +419,56 @@ const TsoWatchedContact* tso_kernel_watched(const TsoContactKernel* kernel, int*
   *count = kernel->watched_count;
   return kernel->watched;
 }
+
+dJointID tso_joint_between(dBodyID a, dBodyID b, int type)
+{
+  dBodyID from = a != NULL ? a : b;
+  dJointID found = NULL;
+  int i, joints;
+  if (from == NULL)
+    return NULL;
+  joints = dBodyGetNumJoints(from);
+  for (i = 0; i < joints; ++i)
+  {
+    dJointID joint = dBodyGetJoint(from, i);
+    dBodyID first = dJointGetBody(joint, 0), second = dJointGetBody(joint, 1);
+    if ((int)dJointGetType(joint) != type || !((first == a && second == b) || (first == b && second == a)))
+      continue;
+    if (found != NULL)
+      return NULL; /* two such joints between the same bodies: which is which cannot be told from here */
+    found = joint;
+  }
+  return found;
+}
+
+/* The same doubles as math.pi and 2 * math.pi in models/built.py. */
+static const double kPi = 3.14159265358979323846;
+static const double kTwoPi = 2.0 * 3.14159265358979323846;
+
+void tso_count_turns(int count, const dJointID* hinges, double* last, double* unwrapped)
+{
+  int i;
+  for (i = 0; i < count; ++i)
+  {
+    double wrapped = dJointGetHingeAngle(hinges[i]);
+    double delta = wrapped - last[i];
+    if (delta > kPi)
+      delta -= kTwoPi;
+    else if (delta < -kPi)
+      delta += kTwoPi;
+    unwrapped[i] += delta;
+    last[i] = wrapped;
+  }
+}
+
+void tso_damp_joints(int count, const dJointID* joints, const unsigned char* sliders, const double* coefficients)
+{
+  int i;
+  for (i = 0; i < count; ++i)
+  {
+    if (sliders[i])
+      dJointAddSliderForce(joints[i], -coefficients[i] * dJointGetSliderPositionRate(joints[i]));
+    else
+      dJointAddHingeTorque(joints[i], -coefficients[i] * dJointGetHingeAngleRate(joints[i]));
+  }
+}

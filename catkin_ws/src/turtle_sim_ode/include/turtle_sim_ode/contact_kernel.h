@@ -59,6 +59,16 @@ extern "C"
   int tso_kernel_collide(TsoContactKernel* kernel);
   /* The contacts touching watched geoms found by the last collide; *count is set to their number. */
   const TsoWatchedContact* tso_kernel_watched(const TsoContactKernel* kernel, int* count);
+  /* The one joint of ODE type ``type`` (dJointTypeHinge, dJointTypeSlider, ...) between bodies a and b (either may
+   * be 0, the world; in either order), or 0 when there is none or more than one. */
+  dJointID tso_joint_between(dBodyID a, dBodyID b, int type);
+  /* Turn counting of continuous joints after a step (models.built.JointHandle.track_turns for each): the change of
+   * each hinge's [-pi, pi] angle since last[i], taken across the wrap, is added to unwrapped[i]; last[i] becomes the
+   * angle. */
+  void tso_count_turns(int count, const dJointID* hinges, double* last, double* unwrapped);
+  /* Viscous joint damping after a step, for the next (models.built's after-step hook for each): -coefficients[i]
+   * times the joint's rate, as a torque on a hinge, a force on a slider (sliders[i] != 0). */
+  void tso_damp_joints(int count, const dJointID* joints, const unsigned char* sliders, const double* coefficients);
 
 #ifdef __cplusplus
 }

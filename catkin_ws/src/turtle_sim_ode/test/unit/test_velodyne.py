@@ -4,16 +4,19 @@ as OnScan lays it out."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from conftest import TurtleSim
 from workspace_testing.timing import assert_within, best_seconds
 
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.sensors.config import read_sdf_sensors
-from turtle_sim_ode.sensors.lidar import MultiBeamLidar
-from turtle_sim_ode.sensors.plugins.velodyne import VelodyneCloud, VelodyneConfig
+from turtle_sim_ode.sensors.lidar import MultiBeamLidar, grid_angles
+from turtle_sim_ode.sensors.plugins.velodyne import POINT, VelodyneCloud, VelodyneConfig
 from turtle_sim_ode.world.simulation import Simulation
 
 # A VLP-16 as velodyne_description's VLP-16.urdf.xacro writes it (16 lasers, +-15 deg, range 0.3 .. 131 m), on a
@@ -130,3 +133,50 @@ def test_a_vlp16_scan_costs_about_the_turtlebot_steps_between_two_scans() -> Non
     scan = best_seconds(lambda: cloud.points(lidar.ranges()), 5)
     turtlebot = TurtleSim()
     assert_within(scan, best_seconds(lambda: [turtlebot.sim.step() for _ in range(100)], 5), 4, "a VLP-16 scan")
+
+
+def onscan_reference(config: VelodyneConfig, directions: np.ndarray, ranges: np.ndarray, rng) -> bytes:
+    """The unorganised cloud point by point, azimuth by azimuth and ring by ring as OnScan loops: the noise drawn for
+    every ray (rng.normal in that order), a point where both the noisy and the measured range are within the band."""
+    rings, azimuths = ranges.shape
+    noise = rng.normal(0.0, config.gaussian_noise, (azimuths, rings)) if config.gaussian_noise else None
+    low, high = max(config.min_range, config.range_min), min(config.max_range, config.range_max)
+    cloud = []
+    for i in range(azimuths):
+        for j in range(rings):
+            measured = ranges[j, i]
+            noisy = measured + noise[i, j] if noise is not None else measured
+            if low < noisy < high and low < measured < high and 0.0 >= config.min_intensity:
+                x, y, z = (noisy * directions[j, i, axis] for axis in range(3))
+                cloud.append((x, y, z, 0.0, j, 0.0))
+    return np.array(cloud, dtype=POINT).tobytes()
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    grid=st.tuples(st.integers(1, 40), st.integers(1, 8)),
+    noise=st.sampled_from([0.0, 0.008, 2.0]),
+    band=st.tuples(st.floats(0.0, 10.0), st.floats(5.0, 200.0)),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_the_cloud_is_onscan_point_for_point(grid, noise, band, seed) -> None:
+    """VelodyneCloud.points (scratch reused, noise drawn into it, points picked by index: issue #33) against OnScan's
+    loop written out: the same bytes, scan after scan, and the generator left where rng.normal leaves it."""
+    samples, rings = grid
+    (config,) = read_sdf_sensors(vlp16(samples)).configs
+    config = replace(config, vertical_samples=rings, min_range=band[0], max_range=band[1], gaussian_noise=noise)
+    pitch, yaw = np.meshgrid(
+        grid_angles(rings, config.vertical_min_angle, config.vertical_max_angle),
+        grid_angles(samples, config.min_angle, config.max_angle),
+        indexing="ij",
+    )
+    directions = np.stack((np.cos(pitch) * np.cos(yaw), np.cos(pitch) * np.sin(yaw), np.sin(pitch)), axis=-1)
+    cloud = VelodyneCloud(config, directions, np.random.default_rng(seed))
+    reference_rng, ranges_rng = np.random.default_rng(seed), np.random.default_rng(seed + 1)
+    for _ in range(3):
+        ranges = ranges_rng.uniform(0.0, 140.0, (rings, samples))
+        ranges[ranges_rng.random(ranges.shape) < 0.2] = config.range_max  # rays that hit nothing
+        points, height, width, dense = cloud.points(ranges)
+        assert points.tobytes() == onscan_reference(config, directions, ranges, reference_rng)
+        assert (height, width, dense) == (1, len(points), True)
+    assert cloud._rng.random() == reference_rng.random()

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, Dict, List, Optional, Tuple
+from typing import Dict, List, Optional, Tuple
 
 import ode
 
@@ -22,6 +22,7 @@ from turtle_sim_ode.models.transforms import (
     quat_rotate,
 )
 from turtle_sim_ode.models.description import RobotModel
+from turtle_sim_ode.physics.joint_batch import JointDamper, TurnCounter
 from turtle_sim_ode.physics.trimesh import remove_geom
 from turtle_sim_ode.physics.world import PhysicsWorld
 
@@ -43,7 +44,7 @@ class LinkFrame:
 class JointHandle:
     """A non-fixed URDF joint: position and velocity with URDF sign conventions."""
 
-    __slots__ = ("name", "type", "joint", "_read_wrapped", "_last_wrapped", "_unwrapped")
+    __slots__ = ("name", "type", "joint", "_read_wrapped", "_last_wrapped", "_unwrapped", "_counter", "_slot")
 
     def __init__(self, name: str, joint_type: str, joint: ode.Joint) -> None:
         self.name = name
@@ -52,11 +53,18 @@ class JointHandle:
         self._read_wrapped = joint.getAngle if joint_type == "continuous" else None
         self._last_wrapped = 0.0
         self._unwrapped = 0.0
+        self._counter: Optional[TurnCounter] = None  # counting the turns in C instead, in slot _slot
+        self._slot = 0
+
+    def count_in(self, counter: TurnCounter, slot: int) -> None:
+        """Count the turns of this continuous joint in ``counter``'s ``slot`` from now on."""
+        counter.last[slot], counter.unwrapped[slot] = self._last_wrapped, self._unwrapped
+        self._counter, self._slot = counter, slot
 
     def angle(self) -> float:
         """Joint position (rad or m); continuous joints are unwrapped (multi-turn)."""
         if self.type == "continuous":
-            return self._unwrapped
+            return self._unwrapped if self._counter is None else self._counter.unwrapped[self._slot]
         if self.type == "prismatic":
             return self.joint.getPosition()
         return self.joint.getAngle()
@@ -88,6 +96,9 @@ class JointHandle:
 
     def track_turns(self) -> None:
         """Accumulate ODE's [-pi, pi] hinge angle; called after every step."""
+        if self._counter is not None:
+            self._counter.count_one(self._slot)
+            return
         wrapped = self._read_wrapped()
         delta = wrapped - self._last_wrapped
         if delta > math.pi:
@@ -103,21 +114,40 @@ class JointHandle:
         if self._read_wrapped is not None:
             self._unwrapped = position
             self._last_wrapped = self._read_wrapped()
+            if self._counter is not None:
+                self.count_in(self._counter, self._slot)
 
 
-def _after_step_hook(continuous: List[JointHandle], damping: List[Tuple[JointHandle, float]]) -> Callable[[], None]:
-    def after_step() -> None:
-        for handle in continuous:
+class _AfterStep:
+    """The hook a model's joints need after every step: the turns of continuous joints counted (``counter``'s in C,
+    those of ``continuous`` apart) and the damping of the next step added (by ``damper`` in C if there is one). It
+    references neither the model nor the world: a cycle through the world lets the garbage collector free PyODE
+    objects in an order that crashes."""
+
+    def __init__(self, counter: Optional[TurnCounter], continuous: List[JointHandle]) -> None:
+        self._counter, self._continuous = counter, continuous
+        self._damping: List[Tuple[JointHandle, float]] = []
+        self._damper: Optional[JointDamper] = None
+
+    def set_damping(self, damping: List[Tuple[JointHandle, float]], damper: Optional[JointDamper]) -> None:
+        """(joint, coefficient) of each damped joint, and ``damper`` applying the same in C (None: in Python)."""
+        self._damping, self._damper = list(damping), damper
+
+    def __call__(self) -> None:
+        if self._counter is not None:
+            self._counter.count()
+        for handle in self._continuous:
             handle.track_turns()
-        for handle, coefficient in damping:
-            # Added now, this acts during the next step (ODE clears forces after each step).
+        # Added now, the damping acts during the next step (ODE clears forces after each step).
+        if self._damper is not None:
+            self._damper.apply()
+            return
+        for handle, coefficient in self._damping:
             effort = -coefficient * handle.rate()
             if handle.type == "prismatic":
                 handle.joint.addForce(effort)
             else:
                 handle.joint.addTorque(effort)
-
-    return after_step
 
 
 def remove_static_geoms(physics: PhysicsWorld, space: ode.SpaceBase, geoms: Dict[str, List[ode.GeomObject]]) -> None:
@@ -157,15 +187,15 @@ class BuiltModel:
         self._physics = physics
         self._space: Optional[ode.SpaceBase] = space
         continuous = [j for j in joints.values() if j.type == "continuous"]
-        # Shared with the hook: set_damping edits it in place.
+        counter = physics.turn_counter([handle.joint for handle in continuous]) if continuous else None
+        if counter is not None:
+            for slot, handle in enumerate(continuous):
+                handle.count_in(counter, slot)
+            continuous = []
         self._damping = damping
-        self._hook: Optional[Callable[[], None]] = None
-        if continuous or damping:
-            # A closure, not a bound method: the world must not reference this model back,
-            # since a reference cycle lets the garbage collector free PyODE objects in an
-            # order that crashes.
-            self._hook = _after_step_hook(continuous, damping)
-            physics.add_post_step_hook(self._hook)
+        self._hook: Optional[_AfterStep] = None
+        if counter is not None or continuous or damping:
+            self._add_hook(counter, continuous)
 
     def _frame(self, link: str) -> LinkFrame:
         if self._space is None:
@@ -265,9 +295,19 @@ class BuiltModel:
         self._damping[:] = [(h, c) for h, c in self._damping if h is not handle]
         if coefficient > 0:
             self._damping.append((handle, coefficient))
-            if self._hook is None:  # no continuous joints, no damping until now
-                self._hook = _after_step_hook([], self._damping)
-                self._physics.add_post_step_hook(self._hook)
+        if self._hook is not None:
+            self._hook.set_damping(self._damping, self._damper())
+        elif self._damping:  # no continuous joints, no damping until now
+            self._add_hook(None, [])
+
+    def _add_hook(self, counter: Optional[TurnCounter], continuous: List[JointHandle]) -> None:
+        self._hook = _AfterStep(counter, continuous)
+        self._hook.set_damping(self._damping, self._damper())
+        self._physics.add_post_step_hook(self._hook)
+
+    def _damper(self) -> Optional[JointDamper]:
+        damped = [(handle.joint, coefficient) for handle, coefficient in self._damping]
+        return self._physics.joint_damper(damped) if damped else None
 
     def set_mass(self, link: str, mass: float, com: Vec3, inertia: Matrix3) -> None:
         """Give the body carrying ``link`` this mass, centre of mass and inertia about it (both

@@ -15,6 +15,7 @@ from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 import ode
 
 LIBRARY = "libturtle_sim_ode_contacts.so"
+DJOINT_TYPE_HINGE, DJOINT_TYPE_SLIDER = 2, 3  # ODE's dJointType values (ode/common.h)
 
 # As physics.surfaces.ContactSurface: (mode, fdir_side, adjust_depth, mu, mu2, soft_erp, soft_cfm, slip1, slip2,
 # min_depth, depth_cap, surface_layer, fdir1 x, y, z).
@@ -74,6 +75,7 @@ def find_library(name: str = LIBRARY) -> Optional[ctypes.CDLL]:
 
 def _declare(lib: ctypes.CDLL) -> ctypes.CDLL:
     pointer, integer, pointers = ctypes.c_void_p, ctypes.c_int, ctypes.POINTER(ctypes.c_void_p)
+    doubles = ctypes.POINTER(ctypes.c_double)
     signatures = {
         "tso_kernel_create": (pointer, []),
         "tso_kernel_destroy": (None, [pointer]),
@@ -88,6 +90,9 @@ def _declare(lib: ctypes.CDLL) -> ctypes.CDLL:
         "tso_kernel_collide": (integer, [pointer]),
         "tso_kernel_watched": (ctypes.POINTER(_WatchedContact), [pointer, ctypes.POINTER(ctypes.c_int)]),
         "dGeomGetBody": (pointer, [pointer]),  # libode's, found through the kernel's dependencies
+        "tso_joint_between": (pointer, [pointer, pointer, integer]),
+        "tso_count_turns": (None, [integer, pointers, doubles, doubles]),
+        "tso_damp_joints": (None, [integer, pointers, ctypes.POINTER(ctypes.c_ubyte), doubles]),
     }
     for name, (restype, argtypes) in signatures.items():
         function = getattr(lib, name)
@@ -122,6 +127,10 @@ class ContactKernel:
             raise MemoryError("tso_kernel_create")
         self._count = ctypes.c_int()
         self._collide = lib.tso_kernel_collide
+
+    @property
+    def library(self) -> ctypes.CDLL:
+        return self._lib
 
     @classmethod
     def load(cls) -> Optional["ContactKernel"]:
@@ -181,6 +190,12 @@ class ContactKernel:
         body_id = self._lib.dGeomGetBody(probe._id())
         probe.setBody(None)
         return body_id
+
+    def joint_id(self, joint: Any) -> int:
+        """The ODE id of a PyODE HingeJoint or SliderJoint (PyODE gives joints no ``_id`` either): the one joint of its
+        kind between its bodies, 0 if there is more than one."""
+        kind = DJOINT_TYPE_SLIDER if isinstance(joint, ode.SliderJoint) else DJOINT_TYPE_HINGE
+        return self._lib.tso_joint_between(self.body_id(joint.getBody(0)), self.body_id(joint.getBody(1)), kind) or 0
 
     def watched(self) -> List[WatchedPoint]:
         """Points of the last collide touching watched geoms."""

@@ -7,6 +7,7 @@ from typing import Callable, Dict, Iterable, List, Optional, Sequence, Set, Tupl
 import ode
 
 from turtle_sim_ode.physics.contact_kernel import ContactKernel
+from turtle_sim_ode.physics.joint_batch import JointDamper, TurnCounter
 from turtle_sim_ode.physics.contacts import ContactWatch, WatchedContact, add_contact_joints
 from turtle_sim_ode.physics.settings import PhysicsParams, configure_world
 from turtle_sim_ode.physics.surfaces import ContactSurface, PairContact, SurfaceParams, combine_surfaces, ground_surface
@@ -217,6 +218,26 @@ class PhysicsWorld:
         self._jointed = {pair for pair in self._jointed if body not in pair}
         self._body_ids.pop(body, None)
         self._kernel_stale = True
+
+    def turn_counter(self, hinges: Sequence[ode.HingeJoint]) -> Optional[TurnCounter]:
+        """A counter of ``hinges``' turns in the contact kernel's library (slot i: hinges[i]), None on the Python path
+        or if a hinge's ODE id cannot be found."""
+        ids = self._joint_ids(hinges)
+        return TurnCounter(self._kernel.library, ids, hinges) if self._kernel is not None and all(ids) else None
+
+    def joint_damper(self, damped: Sequence[Tuple[ode.Joint, float]]) -> Optional[JointDamper]:
+        """Viscous damping of (hinge or slider, coefficient) pairs in the contact kernel's library, None on the Python
+        path or if a joint's ODE id cannot be found."""
+        joints = [joint for joint, _ in damped]
+        ids = self._joint_ids(joints)
+        if self._kernel is None or not all(ids):
+            return None
+        entries = [(i, isinstance(j, ode.SliderJoint), c) for i, (j, c) in zip(ids, damped)]
+        return JointDamper(self._kernel.library, entries, joints)
+
+    def _joint_ids(self, joints: Sequence[ode.Joint]) -> List[int]:
+        kernel = self._kernel
+        return [kernel.joint_id(joint) for joint in joints] if kernel is not None else []
 
     def add_pre_step_hook(self, hook: Callable[[], None]) -> None:
         """Call ``hook()`` right before every step's integration, once every force for it is added (e.g. to record
