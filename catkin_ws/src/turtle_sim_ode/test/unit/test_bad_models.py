@@ -7,7 +7,7 @@ import math
 import os
 
 import pytest
-from workspace_testing.timing import assert_within, best_seconds, timed
+from workspace_testing.timing import assert_within, best_seconds
 
 from turtle_sim_ode.models.sdf import model_format, parse_sdf_model
 from turtle_sim_ode.models.urdf import MAX_COLLISIONS, MAX_LINKS, parse_urdf
@@ -116,8 +116,8 @@ def closed_comments_seconds() -> float:
 )
 def test_model_format_is_linear_on_hostile_text(unit, closed_comments_seconds):
     text = unit * (4_000_000 // len(unit))  # 4 MB of markup and no root element
-    answer, seconds = timed(lambda: model_format(text))
-    assert answer == "unknown"
+    assert model_format(text) == "unknown"
+    seconds = best_seconds(lambda: model_format(text), 2)  # best of two on both sides: one run can be stalled by the host
     # At most a few times the slowest linear case, one turn of the loop per comment; quadratic would take hours.
     assert_within(seconds, closed_comments_seconds, 3, "4 MB of %r" % unit)
 
