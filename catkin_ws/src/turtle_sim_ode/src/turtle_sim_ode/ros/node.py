@@ -29,7 +29,7 @@ from turtle_sim_ode.ros.gazebo_api import GazeboApi
 from turtle_sim_ode.ros.spawn import MAX_RAYS_PER_MODEL, TopicTypes, known_topic_types, summarise
 from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
 from turtle_sim_ode.ros.performance import PerformanceMetricsPublisher
-from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, sim_stamp
+from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, ros_time, sim_stamp
 from turtle_sim_ode.ros.plugins import model_interfaces
 from turtle_sim_ode.ros.scene_markers import SceneMarkers
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
@@ -68,6 +68,7 @@ class SimulatorNode:
         # Advertised with the first model whose plugin publishes tf (Gazebo has no /tf publisher before).
         self._tf: Optional[PackedPublisher] = None
         self.interfaces: Dict[str, List[Periodic]] = {}
+        self._interfaces: List[Periodic] = []  # all of them, in that order: the loop runs through them
         self.api: Optional[GazeboApi] = None
         self.metrics: Optional[PerformanceMetricsPublisher] = None
         self.scene_markers: Optional[SceneMarkers] = None  # what the viewer (gzclient) draws
@@ -122,6 +123,7 @@ class SimulatorNode:
             self._tf = PackedPublisher("/tf", TFMessage)
         interfaces = model_interfaces(name, self.sim, self.settings, self._tf, robot_namespace, check_topic)
         self.interfaces[name] = interfaces
+        self._interfaces = self._all_interfaces()
         for interface in interfaces:
             interface.restart(self.sim.sim_time)
         self._schedule()
@@ -129,11 +131,12 @@ class SimulatorNode:
     def _remove_interface(self, name: str) -> None:
         for interface in self.interfaces.pop(name, []):
             interface.close()
+        self._interfaces = self._all_interfaces()
         self._schedule()
         release_memory()
 
     def _schedule(self) -> None:
-        self._next_due = min((interface.next_due for interface in self._all_interfaces()), default=math.inf)
+        self._next_due = min([interface.next_due for interface in self._interfaces], default=math.inf)
 
     def spawn_urdf(self, name: str, urdf: str, pose) -> List[str]:
         """Spawn a model at start-up; ModelError on a bad name or model."""
@@ -179,9 +182,8 @@ class SimulatorNode:
         now = self._now = sim.sim_time
         if now >= self._next_due - 1e-9:  # as Periodic.publish_due decides
             stamp = sim_stamp(now)
-            for interfaces in self.interfaces.values():
-                for interface in interfaces:
-                    interface.publish_due(now, stamp)
+            for interface in self._interfaces:
+                interface.publish_due(now, stamp)
             self._schedule()
         if self.api is not None:
             self.api.publish_states(now)
@@ -324,7 +326,7 @@ def stop_hearing_own_clock() -> bool:
 def set_ros_time(secs: int, nsecs: int) -> None:
     """What rospy's /clock subscriber does (rospy.rostime._set_rostime) without its Condition.notifyAll, which
     warns of its deprecation on every call since Python 3.10: ~6 us a /clock message."""
-    rospy.rostime._rostime_current = rospy.Time(secs, nsecs)
+    rospy.rostime._rostime_current = ros_time(secs, nsecs)
     with rospy.rostime._rostime_cond:
         rospy.rostime._rostime_cond.notify_all()
 
