@@ -14,7 +14,7 @@ from turtle_sim_ode.ros.plugins.drive import DriveInterface
 from turtle_sim_ode.ros.plugins.imu import ImuPublisher
 from turtle_sim_ode.ros.plugins.p3d import GroundTruthPublisher
 from turtle_sim_ode.ros.settings import SimulatorSettings
-from turtle_sim_ode.ros.wire import release
+from turtle_sim_ode.ros.wire import heard, release
 from turtle_sim_ode.sensors.imu import ImuSensor
 from turtle_sim_ode.sensors.kobuki import (
     KOBUKI_CLIFF_OFFSETS,
@@ -47,7 +47,7 @@ class EventPublisher(Periodic):
         self._read_last_time = True
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not (self._pub.get_num_connections() or self._core_heard()):
+        if not (heard(self._pub) or self._core_heard()):
             self._read_last_time = False
             return
         changes = self._sensor.changes()
@@ -117,7 +117,7 @@ class CorePublisher(Periodic):
         self._pub = publisher(topic, SensorState, 10)
 
     def heard(self) -> bool:
-        return bool(self._pub.get_num_connections())
+        return heard(self._pub)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         if not self.heard():
