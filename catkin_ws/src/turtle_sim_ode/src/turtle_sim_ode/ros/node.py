@@ -41,6 +41,8 @@ from turtle_sim_ode.world.values import WorldError
 MAX_LOCKSTEP_STEPS = 1000000
 # The run loop holds the world for at most this many steps that publish nothing (a few ms): services get in between.
 MAX_QUIET_STEPS = 100
+# Added to the count of steps to the next due time before truncating it (see SimulatorNode._step_quietly).
+DUE_STEPS_ROUNDING = 1e-6
 
 
 class SimulatorNode:
@@ -209,9 +211,13 @@ class SimulatorNode:
 
     def _step_quietly(self) -> None:
         """Step through the steps at which nothing falls due without _advance's checks (call unpaced, under the lock,
-        after a reset has been seen): one step short of the next due time, so that rounding never skips it."""
+        after a reset has been seen): up to the step before the next due time, so that _advance makes the due step.
+        The steps to it are counted with DUE_STEPS_ROUNDING: (due - now) / step is mostly a hair under a whole number
+        (0.01 / 0.001 = 9.999...), and truncated it stopped two steps short, costing a loop turn with nothing due;
+        the quiet steps still end at least 0.999999 of a step before the due time, so none of them can be due."""
         due = min(self._next_due, self._next_clock, self.api.next_states_time if self.api is not None else math.inf)
-        quiet = min(int((due - self._now) / self.sim.physics.time_step) - 1, MAX_QUIET_STEPS)
+        steps_to_due = (due - self._now) / self.sim.physics.time_step
+        quiet = min(int(steps_to_due + DUE_STEPS_ROUNDING) - 1, MAX_QUIET_STEPS)
         if quiet > 0:
             step = self.sim.step
             for _ in range(quiet):
