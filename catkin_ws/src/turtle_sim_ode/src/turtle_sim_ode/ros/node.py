@@ -211,13 +211,9 @@ class SimulatorNode:
 
     def _step_quietly(self) -> None:
         """Step through the steps at which nothing falls due without _advance's checks (call unpaced, under the lock,
-        after a reset has been seen): up to the step before the next due time, so that _advance makes the due step.
-        The steps to it are counted with DUE_STEPS_ROUNDING: (due - now) / step is mostly a hair under a whole number
-        (0.01 / 0.001 = 9.999...), and truncated it stopped two steps short, costing a loop turn with nothing due;
-        the quiet steps still end at least 0.999999 of a step before the due time, so none of them can be due."""
+        after a reset has been seen): up to the step before the next due time, so that _advance makes the due step."""
         due = min(self._next_due, self._next_clock, self.api.next_states_time if self.api is not None else math.inf)
-        steps_to_due = (due - self._now) / self.sim.physics.time_step
-        quiet = min(int(steps_to_due + DUE_STEPS_ROUNDING) - 1, MAX_QUIET_STEPS)
+        quiet = min(quiet_steps(self._now, due, self.sim.physics.time_step), MAX_QUIET_STEPS)
         if quiet > 0:
             step = self.sim.step
             for _ in range(quiet):
@@ -299,6 +295,14 @@ class SimulatorNode:
             self._step_service.shutdown()
         for interface in self._all_interfaces():
             interface.close()
+
+
+def quiet_steps(now: float, due: float, time_step: float) -> int:
+    """How many steps from ``now`` end before the step that reaches ``due`` (0 or less: none). (due - now) / step is
+    mostly a hair under a whole number (0.01 / 0.001 = 9.999...): truncated as it is, it stopped two steps short and
+    cost the loop a turn with nothing due; with DUE_STEPS_ROUNDING the quiet steps still end at least 0.999999 of a
+    step before ``due``, so none of them is due (publish_due's tolerance is 1e-9 s, time steps >= 1e-7 s)."""
+    return int((due - now) / time_step + DUE_STEPS_ROUNDING) - 1
 
 
 def broadcasts_tf(drive) -> bool:  # type: ignore[no-untyped-def]
