@@ -20,6 +20,7 @@ DUE_TOLERANCE_S = 1e-9  # Periodic.publish_due: due from due - 1e-9 s on
 def first_due_step(base: float, steps: int, time_step: float, due: float) -> int:
     """How many steps after step ``steps`` the first one comes whose sim time (PhysicsWorld.sim_time: base + steps *
     time_step) is due."""
+
     def is_due(later: int) -> bool:
         return base + (steps + later) * time_step >= due - DUE_TOLERANCE_S
 

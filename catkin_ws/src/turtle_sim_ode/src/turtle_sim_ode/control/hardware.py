@@ -131,7 +131,8 @@ class DefaultRobotHWSim(RobotHW):
         # Each joint with its simulated joint's readers and its writer for its control method, looked up once: read
         # and write run every step.
         self._readers = [
-            (joint, self.sim_joints[name].position, self.sim_joints[name].velocity) for name, joint in self.joints.items()
+            (joint, self.sim_joints[name].position, self.sim_joints[name].velocity)
+            for name, joint in self.joints.items()
         ]
         self._writers = [self._writer(joint, self.sim_joints[name]) for name, joint in self.joints.items()]
         self.read()
