@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Deque, List, Optional
 
 from turtle_sim_ode.control.controller import Controller, Throttle
-from turtle_sim_ode.control.hardware import RobotHW, clamp
+from turtle_sim_ode.control.hardware import JointData, RobotHW, clamp
 from turtle_sim_ode.control.params import ControllerError, Params
 from turtle_sim_ode.control.transmissions import VELOCITY
 from turtle_sim_ode.models.description import Cylinder, RobotModel, Sphere
@@ -60,7 +60,8 @@ class SpeedLimiter:
 
 class Odometry:
     """diff_drive_controller's Odometry: exact integration of the wheel displacements (Runge-Kutta 2 when the
-    heading change is below 1e-6), velocities as rolling means of the last ``window`` estimates."""
+    heading change is below 1e-6), velocities as rolling means of the last ``window`` estimates (worked out when
+    read, at the publish rate, rather than at every control update)."""
 
     def __init__(self, window: int) -> None:
         self.window = window
@@ -68,11 +69,21 @@ class Odometry:
 
     def reset(self, time: float) -> None:
         self.x = self.y = self.heading = 0.0
-        self.linear = self.angular = 0.0
+        self._open_loop_twist = (0.0, 0.0)  # the velocities of open-loop updates, which estimate none
         self.timestamp = time
         self.left_old = self.right_old = None
         self.linear_acc: Deque[float] = deque(maxlen=self.window)
         self.angular_acc: Deque[float] = deque(maxlen=self.window)
+
+    @property
+    def linear(self) -> float:
+        estimates = self.linear_acc
+        return sum(estimates) / len(estimates) if estimates else self._open_loop_twist[0]
+
+    @property
+    def angular(self) -> float:
+        estimates = self.angular_acc
+        return sum(estimates) / len(estimates) if estimates else self._open_loop_twist[1]
 
     def integrate(self, linear: float, angular: float) -> None:
         if abs(angular) < 1e-6:
@@ -100,13 +111,19 @@ class Odometry:
         self.timestamp = time
         self.linear_acc.append(linear / dt)
         self.angular_acc.append(angular / dt)
-        self.linear = sum(self.linear_acc) / len(self.linear_acc)
-        self.angular = sum(self.angular_acc) / len(self.angular_acc)
 
     def update_open_loop(self, linear: float, angular: float, time: float) -> None:
-        self.linear, self.angular = linear, angular
+        self._open_loop_twist = (linear, angular)
         dt, self.timestamp = time - self.timestamp, time
         self.integrate(linear * dt, angular * dt)
+
+
+def mean_position(joints: List[JointData]) -> float:
+    """The joints' mean position, summed in order from 0 as sum() does (a loop costs less than a generator)."""
+    total = 0
+    for joint in joints:
+        total += joint.position
+    return total / len(joints)
 
 
 def _wheel_names(params: Params, name: str) -> List[str]:
@@ -206,8 +223,8 @@ class DiffDriveController(Controller):
         if self.open_loop:
             self.odometry.update_open_loop(self.last0[0], self.last0[1], time)
         else:
-            left = sum(j.position for j in self.left) / len(self.left) * left_radius
-            right = sum(j.position for j in self.right) / len(self.right) * right_radius
+            left = mean_position(self.left) * left_radius
+            right = mean_position(self.right) * right_radius
             if not (math.isfinite(left) and math.isfinite(right)):
                 return
             self.odometry.update(left, right, separation, time)
@@ -216,15 +233,18 @@ class DiffDriveController(Controller):
         linear, angular, stamp = self.command
         if time - stamp > self.cmd_vel_timeout:
             linear = angular = 0.0
-        linear = self.limiter_linear.limit(linear, self.last0[0], self.last1[0], period)
-        angular = self.limiter_angular.limit(angular, self.last0[1], self.last1[1], period)
-        self.last1, self.last0 = self.last0, (linear, angular)
+        last0, last1 = self.last0, self.last1
+        linear = self.limiter_linear.limit(linear, last0[0], last1[0], period)
+        angular = self.limiter_angular.limit(angular, last0[1], last1[1], period)
+        self.last1, self.last0 = last0, (linear, angular)
         if self.publish_cmd:
             self.publish("cmd_vel_out", "twist_stamped", {"stamp": time, "linear": linear, "angular": angular})
+        left_speed = (linear - angular * separation / 2.0) / left_radius
+        right_speed = (linear + angular * separation / 2.0) / right_radius
         for joint in self.left:
-            joint.command = (linear - angular * separation / 2.0) / left_radius
+            joint.command = left_speed
         for joint in self.right:
-            joint.command = (linear + angular * separation / 2.0) / right_radius
+            joint.command = right_speed
 
     def _publish_odometry(self, time: float) -> None:
         odom = self.odometry

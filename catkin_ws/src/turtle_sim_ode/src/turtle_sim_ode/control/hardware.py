@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Dict, List, Mapping, Optional, Protocol
+from typing import Callable, Dict, List, Mapping, Optional, Protocol
 
 from turtle_sim_ode.control.params import ControllerError, Params
 from turtle_sim_ode.control.pid import Pid, read_gains
@@ -128,8 +128,13 @@ class DefaultRobotHWSim(RobotHW):
                     self.pids[spec.name] = Pid(read_gains(gains))
                 except ControllerError as error:
                     self.warnings.append(str(error))
-        # Each joint with its simulated joint, looked up once: read and write run every step.
-        self._pairs = [(joint, self.sim_joints[name]) for name, joint in self.joints.items()]
+        # Each joint with its simulated joint's readers and its writer for its control method, looked up once: read
+        # and write run every step.
+        self._readers = [
+            (joint, self.sim_joints[name].position, self.sim_joints[name].velocity)
+            for name, joint in self.joints.items()
+        ]
+        self._writers = [self._writer(joint, self.sim_joints[name]) for name, joint in self.joints.items()]
         self.read()
         for joint in self.joints.values():
             joint.command = joint.position if joint.interface == POSITION else 0.0
@@ -140,33 +145,53 @@ class DefaultRobotHWSim(RobotHW):
         return base + "_PID" if name in self.pids else base
 
     def read(self) -> None:
-        for joint, sim in self._pairs:
-            joint.position = sim.position()
-            joint.velocity = sim.velocity()
+        for joint, position, velocity in self._readers:
+            joint.position = position()
+            joint.velocity = velocity()
 
     def write(self, period: float) -> None:
         """Saturate the commands to the joint limits (joint_limits_interface's saturation handles) and apply
         them for the coming step."""
-        for joint, sim in self._pairs:
-            name, limits = joint.name, joint.limits
-            command = joint.command if math.isfinite(joint.command) else 0.0
-            if joint.interface == EFFORT:
+        for write in self._writers:
+            write(period)
+
+    def _writer(self, joint: JointData, sim: SimJoint) -> Callable[[float], None]:
+        """What write does with ``joint`` each step, by its control method: a non-finite command counts as 0."""
+        limits, pid = joint.limits, self.pids.get(joint.name)
+        isfinite = math.isfinite
+        if joint.interface == EFFORT:
+
+            def write_effort(_period: float) -> None:
+                command = joint.command if isfinite(joint.command) else 0.0
                 joint.effort = clamp(command, -limits.effort, limits.effort)
                 sim.apply_effort(joint.effort)
-            elif joint.interface == POSITION:
-                command = self._saturated_position(name, command, period)
-                if name in self.pids:
-                    error = position_error(joint.type, joint.position, command)
+
+            return write_effort
+        if joint.interface == POSITION:
+
+            def write_position(period: float) -> None:
+                command = joint.command if isfinite(joint.command) else 0.0
+                command = self._saturated_position(joint.name, command, period)
+                error = position_error(joint.type, joint.position, command)
+                if pid is not None:
                     self._apply_pid(joint, sim, error, period)
                 else:
-                    speed = position_error(joint.type, joint.position, command) / period if period > 0 else 0.0
-                    sim.drive(speed, joint.motor_force)
-            elif joint.interface == VELOCITY:
-                command = -limits.velocity if command < -limits.velocity else min(command, limits.velocity)
-                if name in self.pids:
+                    sim.drive(error / period if period > 0 else 0.0, joint.motor_force)
+
+            return write_position
+        if joint.interface == VELOCITY:
+            low, high, drive, force = -limits.velocity, limits.velocity, sim.drive, joint.motor_force
+
+            def write_velocity(period: float) -> None:
+                command = joint.command if isfinite(joint.command) else 0.0
+                command = low if command < low else min(command, high)
+                if pid is not None:
                     self._apply_pid(joint, sim, command - joint.velocity, period)
                 else:
-                    sim.drive(command, joint.motor_force)
+                    drive(command, force)
+
+            return write_velocity
+        return lambda _period: None
 
     def _saturated_position(self, name: str, command: float, period: float) -> float:
         """PositionJointSaturationHandle: within the position limits and, with a velocity limit, within

@@ -63,6 +63,7 @@ class ControllerManager:
         self.log = log
         self.loaded: List[Loaded] = []
         self.time = 0.0
+        self._running: List[Controller] = []  # those update runs, in load order (updated by switch)
 
     def find(self, name: str) -> Optional[Loaded]:
         return next((entry for entry in self.loaded if entry.name == name), None)
@@ -169,6 +170,7 @@ class ControllerManager:
             entry.controller.running = True
             entry.controller.starting(self.time)
             entry.state = "running"
+        self._running = [entry.controller for entry in self.loaded if entry.state == "running"]
         return True
 
     def _conflict_free(self, entries: List[Loaded]) -> bool:
@@ -214,6 +216,5 @@ class ControllerManager:
     # --- the control loop -----------------------------------------------------------------
     def update(self, time: float, period: float) -> None:
         self.time = time
-        for entry in self.loaded:
-            if entry.state == "running":
-                entry.controller.update(time, period)
+        for controller in self._running:
+            controller.update(time, period)

@@ -29,7 +29,7 @@ from turtle_sim_ode.ros.gazebo_api import GazeboApi
 from turtle_sim_ode.ros.spawn import MAX_RAYS_PER_MODEL, TopicTypes, known_topic_types, summarise
 from turtle_sim_ode.ros.pacing import MAX_PACING_WAIT_S, Pacing, pacing_problem
 from turtle_sim_ode.ros.performance import PerformanceMetricsPublisher
-from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, sim_stamp
+from turtle_sim_ode.ros.periodic import Periodic, TopicCheck, ros_time, sim_stamp
 from turtle_sim_ode.ros.plugins import model_interfaces
 from turtle_sim_ode.ros.scene_markers import SceneMarkers
 from turtle_sim_ode.ros.settings import SettingsError, SimulatorSettings, settings_from_params
@@ -41,6 +41,8 @@ from turtle_sim_ode.world.values import WorldError
 MAX_LOCKSTEP_STEPS = 1000000
 # The run loop holds the world for at most this many steps that publish nothing (a few ms): services get in between.
 MAX_QUIET_STEPS = 100
+# Added to the count of steps to the next due time before truncating it (see SimulatorNode._step_quietly).
+DUE_STEPS_ROUNDING = 1e-6
 
 
 class SimulatorNode:
@@ -68,6 +70,7 @@ class SimulatorNode:
         # Advertised with the first model whose plugin publishes tf (Gazebo has no /tf publisher before).
         self._tf: Optional[PackedPublisher] = None
         self.interfaces: Dict[str, List[Periodic]] = {}
+        self._interfaces: List[Periodic] = []  # all of them, in that order: the loop runs through them
         self.api: Optional[GazeboApi] = None
         self.metrics: Optional[PerformanceMetricsPublisher] = None
         self.scene_markers: Optional[SceneMarkers] = None  # what the viewer (gzclient) draws
@@ -125,6 +128,7 @@ class SimulatorNode:
             name, self.sim, self.settings, self._tf, robot_namespace, check_topic, self._wake.set
         )
         self.interfaces[name] = interfaces
+        self._interfaces = self._all_interfaces()
         for interface in interfaces:
             interface.restart(self.sim.sim_time)
         self._schedule()
@@ -132,11 +136,12 @@ class SimulatorNode:
     def _remove_interface(self, name: str) -> None:
         for interface in self.interfaces.pop(name, []):
             interface.close()
+        self._interfaces = self._all_interfaces()
         self._schedule()
         release_memory()
 
     def _schedule(self) -> None:
-        self._next_due = min((interface.next_due for interface in self._all_interfaces()), default=math.inf)
+        self._next_due = min([interface.next_due for interface in self._interfaces], default=math.inf)
 
     def spawn_urdf(self, name: str, urdf: str, pose) -> List[str]:
         """Spawn a model at start-up; ModelError on a bad name or model."""
@@ -182,9 +187,8 @@ class SimulatorNode:
         now = self._now = sim.sim_time
         if now >= self._next_due - 1e-9:  # as Periodic.publish_due decides
             stamp = sim_stamp(now)
-            for interfaces in self.interfaces.values():
-                for interface in interfaces:
-                    interface.publish_due(now, stamp)
+            for interface in self._interfaces:
+                interface.publish_due(now, stamp)
             self._schedule()
         if self.api is not None:
             self.api.publish_states(now)
@@ -210,9 +214,9 @@ class SimulatorNode:
 
     def _step_quietly(self) -> None:
         """Step through the steps at which nothing falls due without _advance's checks (call unpaced, under the lock,
-        after a reset has been seen): one step short of the next due time, so that rounding never skips it."""
+        after a reset has been seen): up to the step before the next due time, so that _advance makes the due step."""
         due = min(self._next_due, self._next_clock, self.api.next_states_time if self.api is not None else math.inf)
-        quiet = min(int((due - self._now) / self.sim.physics.time_step) - 1, MAX_QUIET_STEPS)
+        quiet = min(quiet_steps(self._now, due, self.sim.physics.time_step), MAX_QUIET_STEPS)
         if quiet > 0:
             step = self.sim.step
             for _ in range(quiet):
@@ -296,6 +300,14 @@ class SimulatorNode:
             interface.close()
 
 
+def quiet_steps(now: float, due: float, time_step: float) -> int:
+    """How many steps from ``now`` end before the step that reaches ``due`` (0 or less: none). (due - now) / step is
+    mostly a hair under a whole number (0.01 / 0.001 = 9.999...): truncated as it is, it stopped two steps short and
+    cost the loop a turn with nothing due; with DUE_STEPS_ROUNDING the quiet steps still end at least 0.999999 of a
+    step before ``due``, so none of them is due (publish_due's tolerance is 1e-9 s, time steps >= 1e-7 s)."""
+    return int((due - now) / time_step + DUE_STEPS_ROUNDING) - 1
+
+
 def broadcasts_tf(drive) -> bool:  # type: ignore[no-untyped-def]
     """Whether a drive plugin's config asks for odometry on /tf (diff drive and Kobuki: publishTf/publish_tf,
     skid steer: broadcastTF)."""
@@ -327,7 +339,7 @@ def stop_hearing_own_clock() -> bool:
 def set_ros_time(secs: int, nsecs: int) -> None:
     """What rospy's /clock subscriber does (rospy.rostime._set_rostime) without its Condition.notifyAll, which
     warns of its deprecation on every call since Python 3.10: ~6 us a /clock message."""
-    rospy.rostime._rostime_current = rospy.Time(secs, nsecs)
+    rospy.rostime._rostime_current = ros_time(secs, nsecs)
     with rospy.rostime._rostime_cond:
         rospy.rostime._rostime_cond.notify_all()
 

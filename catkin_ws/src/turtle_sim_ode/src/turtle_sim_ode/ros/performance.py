@@ -15,6 +15,7 @@ import rospy
 from gazebo_msgs.msg import PerformanceMetrics, SensorPerformanceMetric
 
 from turtle_sim_ode.models.text import child_text, read_number
+from turtle_sim_ode.ros.wire import heard
 from turtle_sim_ode.world.simulation import Simulation
 
 PERIOD = 1.0  # s of wall time between messages
@@ -48,11 +49,13 @@ class PerformanceMetricsPublisher:
         self._last: Tuple[float, float] = (-1.0, 0.0)  # (wall, sim) at the last message; wall < 0: none yet
 
     def publish_due(self, sim_time: float) -> None:
-        wall = time.monotonic()
         last_wall, last_sim = self._last
+        if last_wall < 0 and not heard(self._pub):  # the common case, at every step: nobody listens
+            return
+        wall = time.monotonic()
         if 0 <= last_wall and wall - last_wall < PERIOD:
             return
-        if not self._pub.get_num_connections():
+        if not heard(self._pub):
             self._last = (-1.0, 0.0)
             return
         self._last = (wall, sim_time)

@@ -15,8 +15,19 @@ from turtle_sim_ode.world.plugins.p3d import find_body
 from turtle_sim_ode.world.simulation import Simulation
 
 
+def ros_time(secs: int, nsecs: int) -> rospy.Time:
+    """rospy.Time(secs, nsecs) of a stamp already in range (0 <= nsecs < 1e9), without the constructor's checks and
+    normalisation: the same object for a sixth of the cost (the node makes one at every step that publishes)."""
+    stamp = _new_time(rospy.Time)
+    stamp.secs, stamp.nsecs = secs, nsecs
+    return stamp
+
+
+_new_time = rospy.Time.__new__
+
+
 def sim_stamp(seconds: float) -> rospy.Time:
-    return rospy.Time(*stamp_parts(seconds))
+    return ros_time(*stamp_parts(seconds))
 
 
 def topic_prefix(namespace: str) -> str:

@@ -91,8 +91,7 @@ class PackedPublisher:
         return self._pub.get_num_connections()
 
     def heard(self) -> bool:
-        impl = self._pub.impl
-        return impl is not None and bool(impl.connections)
+        return heard(self._pub)
 
     def on_subscribers_changed(self, changed: Callable[[], None]) -> None:
         """Call ``changed()`` (from a rospy thread) whenever a subscriber comes or goes."""
@@ -136,6 +135,12 @@ class PackedPublisher:
 
     def unregister(self) -> None:
         release(self._pub)
+
+
+def heard(publisher: rospy.Publisher) -> bool:
+    """Whether ``publisher`` has a subscriber: get_num_connections() without its lock (a step-rate check)."""
+    impl = publisher.impl
+    return impl is not None and bool(impl.connections)
 
 
 def _warn_stalled(topic: str, stalled: Sequence[Any]) -> None:

@@ -59,6 +59,8 @@ class ImuSensor:
             _diagonal(self.noise.angular_velocity),
             _diagonal(self.noise.linear_acceleration),
         )
+        # Without noise (the Kobuki's gyro) an exact reading is already this IMU's: zero covariances, nothing added.
+        self._noiseless = self.noise == ImuNoise()
 
     def reset(self) -> None:
         """Forget the velocity history (after a teleport or world reset)."""
@@ -96,6 +98,8 @@ class ImuSensor:
 
     def with_noise(self, exact: ImuReading) -> ImuReading:
         """An exact reading with this IMU's noise and covariances."""
+        if self._noiseless:
+            return exact
         orientation = exact.orientation
         noise = self.noise
         if noise.orientation > 0:

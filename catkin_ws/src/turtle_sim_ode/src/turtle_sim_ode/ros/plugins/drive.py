@@ -201,7 +201,7 @@ class DriveInterface(Periodic):
         self._odom_pub.publish(self._odom_packer.pack, secs, nsecs, position, orientation, linear, angular)
         if self._tf is not None:
             self._tf.publish(self._tf_packer.pack, secs, nsecs, position, orientation)
-        if self._joint_pub is not None and self._joint_pub.get_num_connections():
+        if self._joint_pub is not None and self._joint_pub.heard():
             left, right = self.robot.left, self.robot.right
             self._joint_pub.publish(
                 self._joint_packer.pack, secs, nsecs, (left.angle(), right.angle()), (left.rate(), right.rate())

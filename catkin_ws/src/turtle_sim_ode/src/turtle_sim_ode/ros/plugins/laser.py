@@ -35,7 +35,7 @@ class LaserPublisher(Periodic):
         )
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not self._pub.get_num_connections():
+        if not self._pub.heard():
             return
         self._pub.publish(self._packer.pack, stamp.secs, stamp.nsecs, self._scanner.scan())
 
