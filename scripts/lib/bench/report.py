@@ -143,18 +143,18 @@ def linear_wall(results: Dict[str, Any]) -> float:
 
 
 def scaling_targets(results: Dict[str, Any]) -> List[Tuple[str, Optional[float], str, Callable[[float], bool]]]:
-    """Issue #33's, each a ratio to a baseline of the same run: the VLP-16 and the controller manager against the
-    robot without them, 300 IMUs against the bare TurtleBot (and real time kept), the 1000-link chain against real
-    time."""
+    """Issue #33's, each a ratio to a baseline of the same run: the VLP-16 against the robot without it, the
+    controller manager against the same base driven by its motors alone, 300 IMUs against the bare TurtleBot (and
+    real time kept), the 1000-link chain against real time."""
     lidars = results.get("lidar", {}).get("lidars", [])
     vlp16 = next((row for row in lidars if (row["lasers"], row["samples"]) == (16, 1800)), None)
     scaling = results.get("scaling", {})
     imus, chain = scaling.get("imus", {}), scaling.get("chain", {})
     return [
         ("VLP-16 at 10 Hz: RTF share", vlp16 and vlp16["rtf_share"], ">= 0.50", lambda v: v >= 0.5),
-        (
-            "controller manager at 1 kHz: RTF share",
-            results.get("ros_control", {}).get("rtf_share_kept"),
+        (  # of the base driven by four motors without a manager: the manager's cost, not ODE's motor rows (control.py)
+            "controller manager at 1 kHz: RTF share of the driven base",
+            results.get("ros_control", {}).get("rtf_share_of_driven"),
             ">= 0.85",
             lambda v: v >= 0.85,
         ),
