@@ -41,7 +41,7 @@ REST = 0.5
 # its timer reaches them, however late a loaded machine runs its subscriber threads; a message fused after a later
 # one is fused without the prediction between (upstream does the same without smooth_lagged_data), which breaks
 # the differential IMU's telescoping (below) and cost up to 0.019 rad with a lead of 1 step
-LEAD = 5
+LEAD = 10
 # s after the start in which the speed is not checked: each odometry message closes about 0.7 of the gap (gain
 # P / (P + R) with P ~ 1e-3 after a step's process noise, R = 4e-4): 3 messages, 0.06 s, to within 0.1 m/s
 SPEED_STEP_RESPONSE = 0.1
