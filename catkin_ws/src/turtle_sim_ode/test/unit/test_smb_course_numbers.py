@@ -31,9 +31,27 @@ What Gazebo does with them, from its sources:
   window lasts. Above some 0.4 m/s the window passes before that; slower, the wheels chatter in bursts (test below;
   with fdir1 along the axle, which stays put, they never do).
 - Turning while driving (0.5 m/s, 0.5 rad/s) a skid steer's wheels slip along the ground, whatever fdir1: each loop
-  is alone again and chatters, and the robot yaws 0.08 rad of the commanded 2 in 4 s (in place 0.84 rad; measured,
+  is alone again and chatters, and the robot yaws 0.09 rad of the commanded 2 in 4 s (in place 0.84 rad; measured,
   not asserted here). Nothing in the sources above gives Gazebo's loop a way out; turtle_sim_ode_smb's own SMB keeps
   p dt / I = 1.02 (10 kg wheels) and turns 1.58 rad while driving.
+  Candidate differences with Gazebo for this gap, each measured here (yaw in 4 s at 0.5 m/s and 0.5 rad/s; the
+  wheels' velocity standard deviation over the last second; as is: 0.090 rad, 0.80 to 0.93 rad/s):
+  - as in Gazebo already: fdir1 turned by the collision's world pose, unprojected, dPlaneSpace only where normal x
+    fdir1 vanishes (ODEPhysics::Collide; its ODE's joints/contact.cpp getInfo2); <mu1 value=...> and <fdir1> reach
+    the SDF (sdformat parser_urdf, GetKeyValueAsString reads the value attribute); the bound |mu lambda_normal| of
+    each friction row on every PGS sweep (quickstep_pgs_lcp.cpp, pyramid_model). Dynamic MOI rescaling (its
+    quickstep.cpp DYNAMIC_INERTIA) acts only on a hinge's constrained axes and only above a ratio of 200: chassis
+    to wheel is 25 and 50 here, and the spin axis is never touched.
+  - 200 solver iterations for Gazebo's 50: 0.090 rad (no convergence matter).
+  - Gazebo's world damping 1e-4 on every body (ODEPhysics::Load, dWorldSetDamping): 0.091 rad.
+  - Gazebo's world defaults where a world gives no <ode><constraints> (sdformat: cfm 0, contact_max_correcting_vel
+    100, contact_surface_layer 0.001; ours the node's 1e-5, 0.1, 0.0001): 0.153 rad, 0.72 to 0.78 rad/s.
+  - A contact joint for each edge point of a wheel's line contact, as ODEPhysics::Collide makes them (we merge the
+    two, README "Modelling notes"): 0.53 rad, 0.56 to 0.69 rad/s; with the world defaults too 0.57 rad.
+  - Not Gazebo, for scale: fdir1 "0 0 1" 0.029 rad; mu 1.0 0.54 rad; p 50 (p dt / I = 1.02) settles the wheels
+    (0.08 rad/s) yet yaws 0.74 rad: wheels at 2.73 and 4.27 rad/s would roll it round at 0.41 rad/s, so they
+    slip along the ground too.
+  None brings the yaw near the commanded 2 rad, so none is taken over here: the gap is open.
 - With a wheel of mu 0 (the 2021 LH) nothing ties that wheel to the ground: its loop chatters between +-100 N m in
   Gazebo too, and its reaction on the chassis moves +-231 N of load between the axles (100 N m / 0.432 m), more than
   a wheel's 147 N: the other wheels lose their grip and chatter with it (test_skid_steer_turning.py: 1.38 m)."""
