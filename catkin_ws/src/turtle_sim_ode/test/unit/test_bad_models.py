@@ -117,7 +117,8 @@ def closed_comments_seconds() -> float:
 def test_model_format_is_linear_on_hostile_text(unit, closed_comments_seconds):
     text = unit * (4_000_000 // len(unit))  # 4 MB of markup and no root element
     assert model_format(text) == "unknown"
-    seconds = best_seconds(lambda: model_format(text), 2)  # best of two on both sides: one run can be stalled by the host
+    # best of two, as the reference: one run alone can be stalled by the host
+    seconds = best_seconds(lambda: model_format(text), 2)
     # At most a few times the slowest linear case, one turn of the loop per comment; quadratic would take hours.
     assert_within(seconds, closed_comments_seconds, 3, "4 MB of %r" % unit)
 
