@@ -5,6 +5,7 @@ scrub_margin / separation_multiplier and 1 of the command: diff_drive_controller
 skid, see turtle_sim_ode's test_skid_steer_turning.py), its wheels run DefaultRobotHWSim's PID (efforts
 reported), and the EKF's odometry/filtered follows the ground truth."""
 import math
+import threading
 import unittest
 
 import rospy
@@ -45,11 +46,20 @@ class SmbControl(unittest.TestCase):
         cls.commands = rospy.Publisher("/cmd_vel", Twist, queue_size=1)
         cls.efforts = []
         rospy.Subscriber("/joint_states", JointState, cls.record_efforts)
+        cls.filtered = None
+        cls.filtered_changed = threading.Condition()
+        rospy.Subscriber("/odometry/filtered", Odometry, cls.record_filtered)
 
     @classmethod
     def record_efforts(cls, states):
         named = dict(zip(states.name, states.effort))
         cls.efforts.append([named.get(wheel, 0.0) for wheel in WHEELS])
+
+    @classmethod
+    def record_filtered(cls, odometry):
+        with cls.filtered_changed:
+            cls.filtered = odometry
+            cls.filtered_changed.notify_all()
 
     def pose(self):
         state = self.model_state("smb", "world")
@@ -92,16 +102,17 @@ class SmbControl(unittest.TestCase):
         self.assert_ekf_follows(truth, estimate)
         return driven
 
-    @staticmethod
-    def filtered_after(time):
+    def filtered_after(self, time):
         """The EKF's pose from the first odometry/filtered stamped after ``time`` (sim time). The filter stamps its
         output with its last fused measurement (robot_localization's ros_filter.cpp, as our drop-in): on a loaded
         machine it runs behind the simulator, and the next message it publishes may still lack the end of the drive
         (or hold the end of the one before)."""
-        while True:
-            filtered = rospy.wait_for_message("/odometry/filtered", Odometry, WAIT)
-            if filtered.header.stamp.to_sec() > time:
-                return filtered.pose.pose
+        with self.filtered_changed:
+            arrived = self.filtered_changed.wait_for(
+                lambda: self.filtered is not None and self.filtered.header.stamp.to_sec() > time, WAIT
+            )
+            self.assertTrue(arrived, "no odometry/filtered stamped after %.3f s within %g s" % (time, WAIT))
+            return self.filtered.pose.pose
 
     def assert_ekf_follows(self, truth, estimate):
         self.assertAlmostEqual(estimate[0], truth[0], delta=rospy.get_param("~ekf_tolerance") * truth[0])

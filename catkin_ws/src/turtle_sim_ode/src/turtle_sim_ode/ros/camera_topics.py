@@ -174,7 +174,7 @@ class CameraPublisher(Periodic):
 
     @staticmethod
     def _heard(channel: Optional[tuple]) -> bool:
-        return channel is not None and channel[0].get_num_connections() > 0
+        return channel is not None and channel[0].heard()
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         self.send(stamp, self.render())

@@ -14,6 +14,8 @@ from turtle_sim_ode.ros.wire import PackedPublisher, stamp_parts
 from turtle_sim_ode.world.plugins.p3d import find_body
 from turtle_sim_ode.world.simulation import Simulation
 
+_new_time = rospy.Time.__new__
+
 
 def ros_time(secs: int, nsecs: int) -> rospy.Time:
     """rospy.Time(secs, nsecs) of a stamp already in range (0 <= nsecs < 1e9), without the constructor's checks and
@@ -21,9 +23,6 @@ def ros_time(secs: int, nsecs: int) -> rospy.Time:
     stamp = _new_time(rospy.Time)
     stamp.secs, stamp.nsecs = secs, nsecs
     return stamp
-
-
-_new_time = rospy.Time.__new__
 
 
 def sim_stamp(seconds: float) -> rospy.Time:
