@@ -54,9 +54,13 @@ What Gazebo does with them, from its sources:
     0.89 and 0.91 rad). Unmerged, the TurtleBot's 1 m circle (test_acceptance.py) grows to 1.08 m; with the world
     defaults, test_model_state_steps' resting tilt (1.07 deg of 1), test_contact_kernel's pile of shapes (4 contacts
     at most) and watched resting contact (none) leave their bounds; with both, the tricycle's turn rate too.
-  - Left, and not measurable on stock ODE 0.16: Gazebo's own quick step (gazebo-classic deps/opende/src/
-    quickstep_pgs_lcp.cpp, PGS_LCP and ComputeRows) relaxes friction rows by CONTACT_PGS_SCALE 0.25, solves them
-    after every bilateral and normal row (row_reorder1), smooths contact lambdas (smooth_contacts) and may warm-start.
+  - Gazebo's own quick step (gazebo-classic deps/opende/src/quickstep_pgs_lcp.cpp, PGS_LCP and ComputeRows) is not
+    stock ODE 0.16's: friction rows relaxed by CONTACT_PGS_SCALE 0.25, solved after every bilateral and normal row,
+    contact lambdas smoothed by contact_residual_smoothing (its default not found); its warm start copies each
+    joint's last lambdas, and contact joints are new each step. Probed on ODE 0.16.2 rebuilt with these (not
+    shipped): the friction scale 0.112 rad; smoothing friction rows by 0.01, 0.1, 0.5: 0.120, 0.284, 0.395 rad; with
+    unmerged points and the world defaults too, at most 0.66 rad: none brings the turn near 2 rad either.
+  - smb_control.yaml's diff_drive limits (2 m/s, 5 m/s^2; 2 rad/s, 5 rad/s^2): 0.083 rad.
   - Not Gazebo, for scale: fdir1 "0 0 1" 0.029 rad; mu 1.0 0.54 rad; p 50 (p dt / I = 1.02) settles the wheels
     (0.08 rad/s) yet yaws 0.74 rad: wheels at 2.73 and 4.27 rad/s would roll it round at 0.41 rad/s, so they
     slip along the ground too.
