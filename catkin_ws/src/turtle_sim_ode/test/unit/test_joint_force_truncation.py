@@ -56,15 +56,18 @@ def test_without_a_limit_the_effort_is_left_alone() -> None:
     assert math.isclose(rates[-1], 100 * 1.0 * STEP / FLYWHEEL_IZZ, rel_tol=1e-3), rates[-1]
 
 
-@settings(max_examples=20, deadline=None)
+# no example database: Debian's hypothesis 6.67 replaying this test's saved examples overran them (data_too_large)
+@settings(max_examples=20, deadline=None, database=None)
 @given(
     st.floats(0.05, 5.0),
     st.floats(0.5, 10.0),
-    st.floats(-20.0, 20.0).filter(lambda effort: abs(effort) > 1e-3),
+    st.floats(0.01, 20.0),
+    st.sampled_from([-1.0, 1.0]),
 )
 def test_generated_limits_bound_the_rate_and_the_acceleration(
-    effort_limit: float, velocity_limit: float, effort: float
+    effort_limit: float, velocity_limit: float, magnitude: float, sign: float
 ) -> None:
+    effort = sign * magnitude
     rates = spin('<limit effort="%r" velocity="%r"/>' % (effort_limit, velocity_limit), effort, 300)
     per_step = min(abs(effort), effort_limit) * STEP / FLYWHEEL_IZZ
     previous = 0.0
