@@ -100,7 +100,7 @@ def simulated(
     """A Simulation (with ``physics``, default: PhysicsParams()) with the model spawned at height z and its ros_control
     stepped before every physics step, the controllers loaded and started, ``robot_params`` the robot namespace's
     parameters: (simulation, RosControl)."""
-    from turtle_sim_ode.control.ode_joint import OdeSimJoint
+    from turtle_sim_ode.control.ode_joint import ode_sim_joints
     from turtle_sim_ode.control.plugin import RosControl, RosControlConfig
     from turtle_sim_ode.world.simulation import Simulation
 
@@ -108,7 +108,7 @@ def simulated(
     sim.spawn_urdf(name, urdf, (0.0, 0.0, z, 0.0, 0.0, 0.0))
     model = sim.models[name]
     config = RosControlConfig.read({}, name, sim.physics.time_step)
-    joints = {joint: OdeSimJoint(model.joint(joint)) for joint in model.joints}
+    joints = ode_sim_joints(model)
     control = RosControl(config, model.robot, joints, robot_params or {}, lambda level, text: None)
     for controller, params in controllers.items():
         assert control.manager.load(controller, params)

@@ -5,7 +5,7 @@ to the effort limit."""
 import pytest
 from world_helpers import floating
 
-from turtle_sim_ode.world.joint_effort import truncated_effort
+from turtle_sim_ode.control.ode_joint import truncated_effort
 
 PENDULUM = """<robot name="pendulum">
   <link name="base"><inertial><mass value="100"/><inertia ixx="100" iyy="100" izz="100" ixy="0" ixz="0" iyz="0"/>

@@ -42,12 +42,25 @@ What Gazebo does with them, from its sources:
     each friction row on every PGS sweep (quickstep_pgs_lcp.cpp, pyramid_model). Dynamic MOI rescaling (its
     quickstep.cpp DYNAMIC_INERTIA) acts only on a hinge's constrained axes and only above a ratio of 200: chassis
     to wheel is 25 and 50 here, and the spin axis is never touched.
-  - 200 solver iterations for Gazebo's 50: 0.090 rad (no convergence matter).
+  - 200 solver iterations for Gazebo's 50: 0.090 rad (no convergence matter); ODE's exact solver (dWorldStep) for
+    the quick step: 0.050 rad (the chatter is the loop's, not the iterative solver's).
+  - Joint::CheckAndTruncateForce's cut of an effort past the joint's 10 rad/s (gazebo-classic Joint.cc; now applied to
+    the hardware's efforts, test_joint_force_truncation.py): 0.090 rad, the wheels never reach 10 rad/s.
   - Gazebo's world damping 1e-4 on every body (ODEPhysics::Load, dWorldSetDamping): 0.091 rad.
   - Gazebo's world defaults where a world gives no <ode><constraints> (sdformat: cfm 0, contact_max_correcting_vel
     100, contact_surface_layer 0.001; ours the node's 1e-5, 0.1, 0.0001): 0.153 rad, 0.72 to 0.78 rad/s.
   - A contact joint for each edge point of a wheel's line contact, as ODEPhysics::Collide makes them (we merge the
-    two, README "Modelling notes"): 0.53 rad, 0.56 to 0.69 rad/s; with the world defaults too 0.57 rad.
+    two, README "Modelling notes"): 0.53 rad, 0.56 to 0.69 rad/s; with the world defaults too 0.57 rad (in place
+    0.89 and 0.91 rad). Unmerged, the TurtleBot's 1 m circle (test_acceptance.py) grows to 1.08 m; with the world
+    defaults, test_model_state_steps' resting tilt (1.07 deg of 1), test_contact_kernel's pile of shapes (4 contacts
+    at most) and watched resting contact (none) leave their bounds; with both, the tricycle's turn rate too.
+  - Gazebo's own quick step (gazebo-classic deps/opende/src/quickstep_pgs_lcp.cpp, PGS_LCP and ComputeRows) is not
+    stock ODE 0.16's: friction rows relaxed by CONTACT_PGS_SCALE 0.25, solved after every bilateral and normal row,
+    contact lambdas smoothed by contact_residual_smoothing (its default not found); its warm start copies each
+    joint's last lambdas, and contact joints are new each step. Probed on ODE 0.16.2 rebuilt with these (not
+    shipped): the friction scale 0.112 rad; smoothing friction rows by 0.01, 0.1, 0.5: 0.120, 0.284, 0.395 rad; with
+    unmerged points and the world defaults too, at most 0.66 rad: none brings the turn near 2 rad either.
+  - smb_control.yaml's diff_drive limits (2 m/s, 5 m/s^2; 2 rad/s, 5 rad/s^2): 0.083 rad.
   - Not Gazebo, for scale: fdir1 "0 0 1" 0.029 rad; mu 1.0 0.54 rad; p 50 (p dt / I = 1.02) settles the wheels
     (0.08 rad/s) yet yaws 0.74 rad: wheels at 2.73 and 4.27 rad/s would roll it round at 0.41 rad/s, so they
     slip along the ground too.

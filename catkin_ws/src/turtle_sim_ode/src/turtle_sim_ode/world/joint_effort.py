@@ -6,21 +6,9 @@ from __future__ import annotations
 import math
 from typing import Callable, Optional
 
+from turtle_sim_ode.control.ode_joint import truncated_effort
 from turtle_sim_ode.models.built import JointHandle
 from turtle_sim_ode.models.description import JointLimits
-
-
-def truncated_effort(effort: float, rate: float, velocity_limit: float, effort_limit: float) -> float:
-    """``effort`` at joint velocity ``rate``; a limit <= 0 (or absent) is none (Gazebo's SDF default is -1; a URDF
-    limit without a velocity reads 0 here)."""
-    if velocity_limit > 0:
-        if rate > velocity_limit and effort > 0:
-            effort = 0.0
-        elif rate < -velocity_limit and effort < 0:
-            effort = 0.0
-    if effort_limit > 0:
-        effort = max(-effort_limit, min(effort_limit, effort))
-    return effort
 
 
 def effort_applier(handle: JointHandle, effort: float, limits: Optional[JointLimits]) -> Callable[[], None]:

@@ -28,7 +28,7 @@ from controller_manager_msgs.srv import (
 )
 from std_msgs.msg import Bool
 
-from turtle_sim_ode.control.ode_joint import OdeSimJoint
+from turtle_sim_ode.control.ode_joint import ode_sim_joints
 from turtle_sim_ode.control.plugin import RosControl, RosControlConfig, unstable_velocity_pids
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, subscriber
 from turtle_sim_ode.ros.plugins.ros_control_topics import ControllerTopics
@@ -71,7 +71,7 @@ class RosControlInterface(Periodic):
         settings = RosControlConfig.read(params, context.name, context.sim.physics.time_step)
         self.namespace = "/" + settings.robot_namespace.strip("/")
         robot_params = uncached_param(self.namespace, {})
-        sim_joints = {name: OdeSimJoint(model.joint(name)) for name in model.joints}
+        sim_joints = ode_sim_joints(model)
         self.control = RosControl(
             settings, model.robot, sim_joints, robot_params if isinstance(robot_params, dict) else {}, _log
         )

@@ -25,7 +25,7 @@ from typing import Deque, List, Mapping, Optional, Tuple
 from turtle_sim_ode.models.built import BuiltModel, JointHandle
 from turtle_sim_ode.models.text import ModelError
 from turtle_sim_ode.models.description import GazeboPlugin
-from turtle_sim_ode.world.joint_effort import truncated_effort
+from turtle_sim_ode.control.ode_joint import truncated_effort
 from turtle_sim_ode.world.plugins.tags import number, text
 
 ELEVATOR = "libgazebo_ros_elevator.so"
