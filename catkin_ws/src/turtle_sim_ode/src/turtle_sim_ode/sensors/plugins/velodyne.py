@@ -1,17 +1,20 @@
 """velodyne_simulator's plugins (``libgazebo_ros_velodyne_laser.so`` in a ``ray`` sensor,
 ``libgazebo_ros_velodyne_gpu_laser.so`` in a ``gpu_ray`` one; GazeboRosVelodyneLaser::Load of velodyne_gazebo_plugins
 1.0.12, noetic): the sensor's horizontal and vertical scan, range and update rate, and the plugin's tags with their
-defaults. The rays are sensors.lidar's; the cloud is built by ros.plugins.velodyne."""
+defaults; the cloud of a scan as OnScan builds it (VelodyneCloud), made on the lidar's thread (VelodyneScans). The
+rays are sensors.lidar's; the message is ros.plugins.velodyne's."""
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, read_number, robot_namespace_tag
+from turtle_sim_ode.sensors.lidar import MultiBeamLidar
+from turtle_sim_ode.sensors.scan_thread import ScanThread
 from turtle_sim_ode.sensors.sensor_element import RayGridConfig, read_ray_grid_plugin
 
 SENSOR_PLUGINS = {
@@ -123,3 +126,33 @@ class VelodyneCloud:
         cloud["intensity"] = np.where(in_band, intensity, np.nan)
         cloud["ring"] = self._rings
         return cloud, measured.shape[0], measured.shape[1], False
+
+
+# Takes a scan's cloud on the lidar's thread: points, height, width, is_dense, and the stamp the scan was asked with.
+CloudSink = Callable[[np.ndarray, int, int, bool, Any], None]
+
+
+class VelodyneScans:
+    """A lidar's clouds made on a thread of its own (sensors.scan_thread): ``scan(stamp)`` takes the geometry from
+    the world now, on the stepping thread; the rays, the noise and the cloud follow on the lidar's thread, which
+    hands the cloud with ``stamp`` to ``sink`` as soon as it is made. Number for number the cloud that
+    ``VelodyneCloud(config, lidar.directions, rng).points(lidar.ranges())`` would give at that time."""
+
+    def __init__(self, lidar: MultiBeamLidar, rng: np.random.Generator, sink: CloudSink) -> None:
+        self.lidar = lidar
+        self._cloud = VelodyneCloud(lidar.config, lidar.directions, rng)
+        self._sink = sink
+        self._thread = ScanThread("lidar %s" % lidar.config.name)
+
+    def scan(self, stamp: Any) -> None:
+        """Start a scan of the world as it is now (after the scan before it is done: waits only if it is not)."""
+        geometry = self.lidar.geometry()
+        self._thread.submit(lambda: self._sink(*self._cloud.points(self.lidar.cast(geometry)), stamp))
+
+    def wait(self) -> None:
+        """Return once the last scan is in the sink (ScanError if it failed)."""
+        self._thread.wait()
+
+    def close(self) -> None:
+        """Wait for the last scan and end the thread."""
+        self._thread.close()
