@@ -25,7 +25,8 @@ RGB = Tuple[float, float, float]
 def library() -> Optional[ctypes.CDLL]:
     """The loaded ray caster, or None if it is not built (searched once)."""
     lib = find_library(LIBRARY)
-    if lib is None or not all(hasattr(lib, name) for name in ("tso_render", "tso_cloud", "tso_rays")):
+    exported = ("tso_render", "tso_cloud", "tso_rays", "tso_velodyne_cloud")
+    if lib is None or not all(hasattr(lib, name) for name in exported):
         return None
     double_p, float_p, byte_p = (ctypes.POINTER(t) for t in (ctypes.c_double, ctypes.c_float, ctypes.c_uint8))
     lib.tso_render.restype = ctypes.c_long
@@ -39,6 +40,9 @@ def library() -> Optional[ctypes.CDLL]:
     lib.tso_rays.restype = ctypes.c_long
     lib.tso_rays.argtypes = [ctypes.c_int, double_p, double_p, ctypes.c_int, double_p, ctypes.c_int]
     lib.tso_rays.argtypes += [ctypes.POINTER(Mesh), double_p, ctypes.c_double, ctypes.c_double, double_p, ctypes.c_int]
+    lib.tso_velodyne_cloud.restype = ctypes.c_long
+    lib.tso_velodyne_cloud.argtypes = [ctypes.c_int, ctypes.c_int, double_p, double_p, ctypes.c_double, ctypes.c_double]
+    lib.tso_velodyne_cloud.argtypes += [ctypes.c_int, ctypes.c_int, double_p, byte_p]
     return lib
 
 
@@ -203,6 +207,36 @@ def cast_rays(
         threads,
     )
     return distance, tests
+
+
+def velodyne_cloud(
+    lib: ctypes.CDLL,
+    ranges: np.ndarray,
+    noise: Optional[np.ndarray],
+    band: Tuple[float, float],
+    organised: bool,
+    intensity_kept: bool,
+    directions: np.ndarray,
+    points: np.ndarray,
+) -> int:
+    """tso_velodyne_cloud: a Velodyne's points of the scan ``ranges`` (rings, azimuths) into ``points`` (a record
+    array with room for every ray, POINT_STEP bytes each); ``noise`` (azimuths, rings) already scaled or None,
+    ``directions`` (azimuths, rings, 3) contiguous. Returns how many points were written."""
+    azimuths, rings = directions.shape[:2]
+    ranges = np.ascontiguousarray(ranges, dtype=np.float64)
+    double = ctypes.c_double
+    return lib.tso_velodyne_cloud(
+        azimuths,
+        rings,
+        _pointer(ranges, double),
+        None if noise is None else _pointer(noise, double),
+        band[0],
+        band[1],
+        int(organised),
+        int(intensity_kept),
+        _pointer(directions, double),
+        _pointer(points, ctypes.c_uint8),
+    )
 
 
 class RayCaster:

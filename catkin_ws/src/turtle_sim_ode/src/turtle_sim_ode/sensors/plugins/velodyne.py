@@ -14,6 +14,8 @@ from xml.etree.ElementTree import Element
 
 from turtle_sim_ode.models.text import ModelError, read_number, robot_namespace_tag
 from turtle_sim_ode.sensors.lidar import MultiBeamLidar
+from turtle_sim_ode.sensors.ray_kernel import library as ray_kernel_library
+from turtle_sim_ode.sensors.ray_kernel import velodyne_cloud
 from turtle_sim_ode.sensors.scan_thread import ScanThread
 from turtle_sim_ode.sensors.sensor_element import RayGridConfig, read_ray_grid_plugin
 
@@ -31,6 +33,7 @@ POINT = np.dtype(
         "itemsize": POINT_STEP,
     }
 )
+INTENSITY = 0.0  # of every point: Gazebo's laser_retro default; no retro-reflectors are simulated
 # At most this many rays a scan (a VLP-32C at 0.1 deg is 115,200; an HDL-64E at 0.08 deg 288,000).
 MAX_RAYS = 300_000
 
@@ -74,12 +77,17 @@ def read(link: str, sensor: Element, plugin: Element, warnings: List[str]) -> Ve
 
 class VelodyneCloud:
     """GazeboRosVelodyneLaser::OnScan's cloud of one scan: ``points(ranges)`` (rings x azimuths, as the sensor
-    reads them) -> (points as POINT records, height, width, is_dense)."""
+    reads them) -> (points as POINT records, height, width, is_dense). In C (tso_velodyne_cloud: one call that lets
+    go of the GIL, where numpy's dozen calls would take it back a dozen times from a thread stepping beside it), or
+    where the ray library is not built or ``kernel`` is False, in numpy: the same bytes."""
 
-    def __init__(self, config: VelodyneConfig, directions: np.ndarray, rng: np.random.Generator) -> None:
+    def __init__(
+        self, config: VelodyneConfig, directions: np.ndarray, rng: np.random.Generator, kernel: bool = True
+    ) -> None:
         """``directions``: the rays' unit vectors in the sensor frame, (rings, azimuths, 3)."""
         self._config = config
         self._rng = rng
+        self._lib = ray_kernel_library() if kernel else None
         self._low = max(config.min_range, config.range_min)
         self._high = min(config.max_range, config.range_max)
         self._directions = np.ascontiguousarray(np.transpose(directions, (1, 0, 2)))  # (azimuths, rings, 3)
@@ -92,15 +100,22 @@ class VelodyneCloud:
         self._measured, self._noise, self._noisy = np.empty(shape), np.empty(shape), np.empty(shape)
         self._in_band, self._also = np.empty(shape, dtype=bool), np.empty(shape, dtype=bool)
 
+    def _scaled_noise(self) -> Optional[np.ndarray]:
+        """gaussianNoise of every ray in OnScan's order, drawn number for number as rng.normal(0, gaussianNoise)
+        draws it; None without noise."""
+        if not self._config.gaussian_noise:
+            return None
+        noise = self._rng.standard_normal(out=self._noise)
+        noise *= self._config.gaussian_noise
+        return noise
+
     def _noisy_in_band(self, ranges: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(measured, measured + gaussianNoise, the rays whose noisy range is within the band), in OnScan's order;
-        the noise drawn number for number as rng.normal(0, gaussianNoise) draws it."""
+        """(measured, measured + gaussianNoise, the rays whose noisy range is within the band), in OnScan's order."""
         measured = self._measured
         np.copyto(measured, ranges.T)
         noisy = measured
-        if self._config.gaussian_noise:
-            noise = self._rng.standard_normal(out=self._noise)
-            noise *= self._config.gaussian_noise
+        noise = self._scaled_noise()
+        if noise is not None:
             noisy = np.add(measured, noise, out=self._noisy)
         in_band = np.greater(noisy, self._low, out=self._in_band)
         in_band &= np.less(noisy, self._high, out=self._also)
@@ -108,12 +123,21 @@ class VelodyneCloud:
 
     def points(self, ranges: np.ndarray) -> Tuple[np.ndarray, int, int, bool]:
         config = self._config
+        if self._lib is not None:
+            azimuths, rings = self._directions.shape[:2]
+            cloud = np.empty(azimuths * rings, dtype=POINT)
+            band, kept = (self._low, self._high), INTENSITY >= config.min_intensity
+            count = velodyne_cloud(
+                self._lib, ranges, self._scaled_noise(), band, config.organize_cloud, kept, self._directions, cloud
+            )
+            if config.organize_cloud:
+                return cloud.reshape(azimuths, rings), azimuths, rings, False
+            return cloud[:count], 1, count, True
         measured, noisy, in_band = self._noisy_in_band(ranges)
-        intensity = 0.0  # Gazebo's laser_retro default; no retro-reflectors are simulated
         if not config.organize_cloud:
             in_band &= np.greater(measured, self._low, out=self._also)
             in_band &= np.less(measured, self._high, out=self._also)
-            picked = np.flatnonzero(in_band) if intensity >= config.min_intensity else np.empty(0, dtype=np.intp)
+            picked = np.flatnonzero(in_band) if INTENSITY >= config.min_intensity else np.empty(0, dtype=np.intp)
             cloud = np.zeros(len(picked), dtype=POINT)
             distance = noisy.take(picked)
             for field, axis in zip("xyz", self._axes):
@@ -123,7 +147,7 @@ class VelodyneCloud:
         cloud = np.zeros(measured.shape, dtype=POINT)
         xyz = np.where(in_band[..., None], noisy[..., None] * self._directions, np.nan)
         cloud["x"], cloud["y"], cloud["z"] = xyz[..., 0], xyz[..., 1], xyz[..., 2]
-        cloud["intensity"] = np.where(in_band, intensity, np.nan)
+        cloud["intensity"] = np.where(in_band, INTENSITY, np.nan)
         cloud["ring"] = self._rings
         return cloud, measured.shape[0], measured.shape[1], False
 
@@ -140,7 +164,7 @@ class VelodyneScans:
 
     def __init__(self, lidar: MultiBeamLidar, rng: np.random.Generator, sink: CloudSink) -> None:
         self.lidar = lidar
-        self._cloud = VelodyneCloud(lidar.config, lidar.directions, rng)
+        self._cloud = VelodyneCloud(lidar.config, lidar.directions, rng, kernel=lidar.uses_ray_kernel)
         self._sink = sink
         self._thread = ScanThread("lidar %s" % lidar.config.name)
 
