@@ -138,10 +138,10 @@ long tso_render(int width, int height, const double* origin, const double* rotat
                 float* depth, uint8_t* rgb, int threads);
 long tso_cloud(int width, int height, const float* depth, const uint8_t* rgb, double focal, double cx, double cy,
                double cutoff, double cutoffMax, float* depthOut, uint8_t* cloud, int threads);
-long tso_rays(int rayCount, const double* origin, const double* directions, int count, const double* primitives,
-              int meshCount, const Mesh* meshes, const double* meshRadii, double tMin, double tMax, double* distance,
-              int threads);
-long tso_velodyne_cloud(int azimuths, int rings, const double* ranges, const double* noise, double low, double high,
-                        int organised, int intensityKept, const double* directions, uint8_t* points);
+long tso_rays(int rayCount, const double* origin, const double* rotation, const double* directions, int count,
+              const double* primitives, int meshCount, const Mesh* meshes, const double* meshRadii, double tMin,
+              double tMax, double* distance, int threads);
+long tso_velodyne_cloud(int azimuths, int rings, const double* ranges, const double* normals, double sigma, double low,
+                        double high, int organised, int intensityKept, const double* directions, uint8_t* points);
 
 #endif

@@ -22,11 +22,12 @@ static void writePoint(uint8_t* point, float x, float y, float z, float intensit
 
 /* The points of a scan of ``azimuths`` x ``rings`` rays, azimuth by azimuth and ring by ring within each, into
  * ``points`` (room for every ray); returns how many were written. ``ranges``: (rings, azimuths) row-major, as
- * measured; ``noise``: (azimuths, rings), gaussianNoise already scaled, or NULL; ``directions``: (azimuths, rings, 3)
- * unit rays in the sensor frame. A ray is in band where low < range < high. Not ``organised``: a point where both the
- * noisy and the measured range are in band (none unless ``intensityKept``); organised: every ray, NaN out of band. */
-long tso_velodyne_cloud(int azimuths, int rings, const double* ranges, const double* noise, double low, double high,
-                        int organised, int intensityKept, const double* directions, uint8_t* points)
+ * measured; ``normals``: (azimuths, rings) standard normals, times ``sigma`` the noise (NULL: none); ``directions``:
+ * (azimuths, rings, 3) unit rays in the sensor frame. A ray is in band where low < range < high. Not ``organised``: a
+ * point where both the noisy and the measured range are in band (none unless ``intensityKept``); organised: every ray,
+ * NaN out of band. */
+long tso_velodyne_cloud(int azimuths, int rings, const double* ranges, const double* normals, double sigma, double low,
+                        double high, int organised, int intensityKept, const double* directions, uint8_t* points)
 {
   long written = 0;
   for (int i = 0; i < azimuths; ++i)
@@ -35,7 +36,9 @@ long tso_velodyne_cloud(int azimuths, int rings, const double* ranges, const dou
     {
       long ray = (long)i * rings + j;
       double measured = ranges[(long)j * azimuths + i];
-      double noisy = noise != NULL ? measured + noise[ray] : measured;
+      /* Rounded as numpy rounds noise = normal * sigma, then measured + noise (no fused multiply-add). */
+      double noise = normals != NULL ? normals[ray] * sigma : 0.0;
+      double noisy = normals != NULL ? measured + noise : measured;
       int inBand = noisy > low && noisy < high;
       const double* d = directions + 3 * ray;
       if (organised)
@@ -47,8 +50,8 @@ long tso_velodyne_cloud(int azimuths, int rings, const double* ranges, const dou
       }
       else if (inBand && measured > low && measured < high && intensityKept)
       {
-        writePoint(points + kPointStep * written++, (float)(noisy * d[0]), (float)(noisy * d[1]),
-                   (float)(noisy * d[2]), 0.0f, (uint16_t)j);
+        writePoint(points + kPointStep * written++, (float)(noisy * d[0]), (float)(noisy * d[1]), (float)(noisy * d[2]),
+                   0.0f, (uint16_t)j);
       }
     }
   }

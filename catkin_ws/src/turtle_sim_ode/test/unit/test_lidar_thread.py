@@ -66,7 +66,9 @@ def lidar_threads() -> List[threading.Thread]:
 
 
 def number(low: float, high: float) -> st.SearchStrategy:
-    return st.floats(low, high, allow_subnormal=False)  # a pose refuses subnormal numbers (physics.sanity)
+    """Centimetres (or centiradians) from ``low`` to ``high``: small examples (Hypothesis 6.67 overran its example
+    size with six tuples of floats), and no subnormal numbers, which a pose refuses (physics.sanity)."""
+    return st.integers(round(low * 100), round(high * 100)).map(lambda hundredths: hundredths / 100.0)
 
 
 shape = st.tuples(
@@ -74,7 +76,8 @@ shape = st.tuples(
 )
 
 
-@settings(max_examples=25, deadline=None)
+# No example database: Debian's Hypothesis 6.67 overran the examples it replayed from one (data_too_large).
+@settings(max_examples=25, deadline=None, database=None)
 @given(
     shapes=st.lists(shape, max_size=6),
     pose=st.tuples(

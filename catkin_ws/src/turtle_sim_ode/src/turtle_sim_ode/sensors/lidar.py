@@ -107,14 +107,14 @@ class MultiBeamLidar(MountedSensor):
         its ray shape, which gazebo_ros_block_laser reads, stays without: pass False)."""
         config = self.config
         origin, rotation, table, meshes = geometry
-        directions = self._local.reshape(-1, 3) @ rotation.T
+        local = self._local.reshape(-1, 3)
         if self._lib is not None:
             distance, self.tests = cast_rays(
-                self._lib, origin, directions, table, meshes, config.range_min, config.range_max, self._threads
+                self._lib, origin, rotation, local, table, meshes, config.range_min, config.range_max, self._threads
             )
         else:
-            distance = self._numpy_rays(origin, directions, table, meshes)
-        distance[~(distance <= config.range_max)] = config.range_max
+            distance = self._numpy_rays(origin, local @ rotation.T, table, meshes)
+            distance[~(distance <= config.range_max)] = config.range_max
         if noisy and (config.noise_stddev > 0 or config.noise_mean != 0):
             distance += self._rng.normal(config.noise_mean, config.noise_stddev, distance.shape)
         return distance.reshape(config.vertical_samples, config.samples)

@@ -100,22 +100,19 @@ class VelodyneCloud:
         self._measured, self._noise, self._noisy = np.empty(shape), np.empty(shape), np.empty(shape)
         self._in_band, self._also = np.empty(shape, dtype=bool), np.empty(shape, dtype=bool)
 
-    def _scaled_noise(self) -> Optional[np.ndarray]:
-        """gaussianNoise of every ray in OnScan's order, drawn number for number as rng.normal(0, gaussianNoise)
-        draws it; None without noise."""
-        if not self._config.gaussian_noise:
-            return None
-        noise = self._rng.standard_normal(out=self._noise)
-        noise *= self._config.gaussian_noise
-        return noise
+    def _normals(self) -> Optional[np.ndarray]:
+        """A standard normal for every ray in OnScan's order, None without gaussianNoise: times gaussianNoise, the
+        numbers rng.normal(0, gaussianNoise) draws."""
+        return self._rng.standard_normal(out=self._noise) if self._config.gaussian_noise else None
 
     def _noisy_in_band(self, ranges: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(measured, measured + gaussianNoise, the rays whose noisy range is within the band), in OnScan's order."""
         measured = self._measured
         np.copyto(measured, ranges.T)
         noisy = measured
-        noise = self._scaled_noise()
+        noise = self._normals()
         if noise is not None:
+            noise *= self._config.gaussian_noise
             noisy = np.add(measured, noise, out=self._noisy)
         in_band = np.greater(noisy, self._low, out=self._in_band)
         in_band &= np.less(noisy, self._high, out=self._also)
@@ -127,9 +124,8 @@ class VelodyneCloud:
             azimuths, rings = self._directions.shape[:2]
             cloud = np.empty(azimuths * rings, dtype=POINT)
             band, kept = (self._low, self._high), INTENSITY >= config.min_intensity
-            count = velodyne_cloud(
-                self._lib, ranges, self._scaled_noise(), band, config.organize_cloud, kept, self._directions, cloud
-            )
+            noise = (self._normals(), config.gaussian_noise)
+            count = velodyne_cloud(self._lib, ranges, noise, band, config.organize_cloud, kept, self._directions, cloud)
             if config.organize_cloud:
                 return cloud.reshape(azimuths, rings), azimuths, rings, False
             return cloud[:count], 1, count, True
