@@ -56,10 +56,13 @@ def lidar_scans(sim: Any, ray_kernel: bool = True) -> Any:
     from turtle_sim_ode.ros.plugins.velodyne import POINT_FIELDS
     from turtle_sim_ode.sensors.lidar import MultiBeamLidar
     from turtle_sim_ode.sensors.plugins.velodyne import POINT_STEP, VelodyneConfig, VelodyneScans
+    from turtle_sim_ode.sensors.scan_thread import cpus_beside_stepping
     from sensor_msgs.msg import PointCloud2
 
     (config,) = [c for c in sim.plugins[MODEL].configs if isinstance(c, VelodyneConfig)]
-    lidar = MultiBeamLidar(sim.physics, sim.models[MODEL], config, ray_kernel=ray_kernel)
+    lidar = MultiBeamLidar(
+        sim.physics, sim.models[MODEL], config, ray_kernel=ray_kernel, threads=cpus_beside_stepping()
+    )
     if ray_kernel and not lidar.uses_ray_kernel:
         raise RuntimeError("libturtle_sim_ode_rays.so is not built: run scripts/build.sh")
     message = PointCloud2(fields=POINT_FIELDS, point_step=POINT_STEP)

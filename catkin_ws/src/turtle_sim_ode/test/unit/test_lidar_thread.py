@@ -18,6 +18,7 @@ from test_velodyne import PILLAR_SDF, vlp16
 
 from turtle_sim_ode.sensors.lidar import MultiBeamLidar, ScanGeometry
 from turtle_sim_ode.sensors.plugins.velodyne import VelodyneCloud, VelodyneScans
+from turtle_sim_ode.sensors import scan_thread
 from turtle_sim_ode.sensors.scan_thread import ScanError, ScanThread
 from turtle_sim_ode.world.simulation import Simulation
 
@@ -177,3 +178,9 @@ def test_close_joins_the_thread_once_the_last_scan_is_delivered() -> None:
     idle = ScanThread("lidar idle")  # never asked to scan: no thread to join
     idle.close()
     assert not lidar_threads()
+
+
+@pytest.mark.parametrize("cpus, threads", [(1, 1), (2, 1), (8, 7)])
+def test_the_rays_leave_the_stepping_thread_a_cpu(monkeypatch, cpus, threads) -> None:
+    monkeypatch.setattr(scan_thread, "usable_cpus", lambda: cpus)
+    assert scan_thread.cpus_beside_stepping() == threads

@@ -20,6 +20,7 @@ from turtle_sim_ode.ros.plugin_topics import period, resolve_frame
 from turtle_sim_ode.ros.wire import release
 from turtle_sim_ode.sensors.lidar import MultiBeamLidar
 from turtle_sim_ode.sensors.plugins.velodyne import POINT_STEP, VelodyneConfig, VelodyneScans
+from turtle_sim_ode.sensors.scan_thread import cpus_beside_stepping
 
 POINT_FIELDS = [
     PointField("x", 0, PointField.FLOAT32, 1),
@@ -69,5 +70,5 @@ class VelodynePublisher(Periodic):
 
 
 def interfaces(context: ModelContext, config: VelodyneConfig) -> List[Periodic]:
-    lidar = MultiBeamLidar(context.sim.physics, context.model, config)
+    lidar = MultiBeamLidar(context.sim.physics, context.model, config, threads=cpus_beside_stepping())
     return [VelodynePublisher(lidar, context.namespace, np.random.default_rng())]
