@@ -9,8 +9,9 @@
  * - ray_cloud.c: tso_cloud, a depth camera's image and point cloud from a picture;
  * - ray_lidar.c: tso_rays, a multi-beam lidar's rays in any direction;
  * - ray_sectors.c: the lidar's broad phase, the shapes a ray heading into a sector of azimuth may meet;
- * - ray_bands.c: a job split into bands of rows run on threads.
- * This header is theirs alone: only tso_render, tso_cloud and tso_rays are exported. */
+ * - ray_bands.c: a job split into bands of rows run on threads;
+ * - ray_velodyne.c: tso_velodyne_cloud, a Velodyne's cloud from a lidar's scan.
+ * This header is theirs alone: only tso_render, tso_cloud, tso_rays and tso_velodyne_cloud are exported. */
 #ifndef TURTLE_SIM_ODE_RAY_KERNEL_H
 #define TURTLE_SIM_ODE_RAY_KERNEL_H
 
@@ -137,8 +138,10 @@ long tso_render(int width, int height, const double* origin, const double* rotat
                 float* depth, uint8_t* rgb, int threads);
 long tso_cloud(int width, int height, const float* depth, const uint8_t* rgb, double focal, double cx, double cy,
                double cutoff, double cutoffMax, float* depthOut, uint8_t* cloud, int threads);
-long tso_rays(int rayCount, const double* origin, const double* directions, int count, const double* primitives,
-              int meshCount, const Mesh* meshes, const double* meshRadii, double tMin, double tMax, double* distance,
-              int threads);
+long tso_rays(int rayCount, const double* origin, const double* rotation, const double* directions, int count,
+              const double* primitives, int meshCount, const Mesh* meshes, const double* meshRadii, double tMin,
+              double tMax, double* distance, int threads);
+long tso_velodyne_cloud(int azimuths, int rings, const double* ranges, const double* normals, double sigma, double low,
+                        double high, int organised, int intensityKept, const double* directions, uint8_t* points);
 
 #endif

@@ -9,6 +9,7 @@
 typedef struct
 {
   const double* origin;
+  const double* rotation;
   const double* directions;
   Shapes shapes;
   const double* meshRadii;
@@ -52,7 +53,14 @@ static void* raysBand(void* arg)
   long tests = 0;
   for (int r = band->rowBegin; r < band->rowEnd; ++r)
   {
-    const double* d = s->directions + 3 * (long)r;
+    /* The ray in the world: the rotation (row-major) times the ray in the sensor frame. */
+    const double* ray = s->directions + 3 * (long)r;
+    const double* R = s->rotation;
+    double d[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      d[a] = R[3 * a] * ray[0] + R[3 * a + 1] * ray[1] + R[3 * a + 2] * ray[2];
+    }
     double best = INFINITY;
     const int* candidates = NULL;
     int listed = shapes->count + shapes->meshCount;
@@ -112,22 +120,23 @@ static void* raysBand(void* arg)
         best = meshHit(mesh, start, local, s->tMin, best, &tests);
       }
     }
-    s->distance[r] = best <= s->tMax ? best : INFINITY;
+    s->distance[r] = best <= s->tMax ? best : s->tMax;
   }
   band->count = tests;
   return NULL;
 }
 
-/* A multi-beam lidar's rays: ``rayCount`` unit ``directions`` (world frame, 3 doubles each) from ``origin`` against
- * ``count`` primitives (rows as tso_render's; planes included) and ``meshCount`` meshes (``meshRadii``: each mesh's
- * bounding radius about its position). Fills ``distance`` with each ray's nearest hit at a distance in (tMin, tMax],
- * INFINITY where there is none, in up to ``threads`` bands of rays at once. Returns the number of ray tests made. */
-long tso_rays(int rayCount, const double* origin, const double* directions, int count, const double* primitives,
-              int meshCount, const Mesh* meshes, const double* meshRadii, double tMin, double tMax, double* distance,
-              int threads)
+/* A multi-beam lidar's rays: ``rayCount`` unit ``directions`` (the sensor's frame, 3 doubles each; ``rotation``, 9
+ * row-major, takes them to the world's) from ``origin`` against ``count`` primitives (rows as tso_render's; planes
+ * included) and ``meshCount`` meshes (``meshRadii``: each mesh's bounding radius about its position). Fills
+ * ``distance`` with each ray's nearest hit at a distance in (tMin, tMax], tMax where there is none (as a ray sensor
+ * reads), in up to ``threads`` bands of rays at once. Returns the number of ray tests made. */
+long tso_rays(int rayCount, const double* origin, const double* rotation, const double* directions, int count,
+              const double* primitives, int meshCount, const Mesh* meshes, const double* meshRadii, double tMin,
+              double tMax, double* distance, int threads)
 {
   Shapes shapes = { count, primitives, meshCount, meshes };
-  Rays job = { origin, directions, shapes, meshRadii, tMin, tMax, distance, NULL, NULL, 0 };
+  Rays job = { origin, rotation, directions, shapes, meshRadii, tMin, tMax, distance, NULL, NULL, 0 };
   int shapeCount = count + meshCount;
   int* candidates = NULL;
   int* listed = NULL;

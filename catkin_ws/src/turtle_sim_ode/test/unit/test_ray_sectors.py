@@ -40,7 +40,7 @@ def sorted_and_every(origin, directions, table, meshes):
     assert lib is not None, "libturtle_sim_ode_rays.so not found: run scripts/build.sh"
 
     def cast(rays):
-        return cast_rays(lib, origin, rays, table, meshes, 0.05, 50.0, 1)[0]
+        return cast_rays(lib, origin, np.eye(3), rays, table, meshes, 0.05, 50.0, 1)[0]
 
     def every():
         return np.concatenate(
@@ -64,7 +64,7 @@ def test_a_room_of_shapes_gives_the_same_distances_in_less_time() -> None:
     sorted_, every = sorted_and_every(np.zeros(3), lidar_directions(1800, 16), np.array(rows), meshes)
     distances = sorted_()
     assert np.array_equal(distances, every())
-    assert np.isfinite(distances).mean() > 0.5
+    assert (distances < 50.0).mean() > 0.5  # 50: the range, read where nothing is hit
     # The point of the sectors: a VLP-16 scan of this room takes at most half the time (compared in this run).
     assert_within(best_seconds(sorted_, 5), best_seconds(every, 5), 0.5, "a scan sorted into sectors")
 

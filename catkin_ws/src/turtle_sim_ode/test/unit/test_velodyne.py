@@ -136,8 +136,9 @@ def test_a_vlp16_scan_costs_about_the_turtlebot_steps_between_two_scans() -> Non
 
 
 def onscan_reference(config: VelodyneConfig, directions: np.ndarray, ranges: np.ndarray, rng) -> bytes:
-    """The unorganised cloud point by point, azimuth by azimuth and ring by ring as OnScan loops: the noise drawn for
-    every ray (rng.normal in that order), a point where both the noisy and the measured range are within the band."""
+    """The cloud point by point, azimuth by azimuth and ring by ring as OnScan loops: the noise drawn for every ray
+    (rng.normal in that order); unorganised, a point where both the noisy and the measured range are within the band;
+    organised (organize_cloud), every ray, NaN where the noisy range is out of the band."""
     rings, azimuths = ranges.shape
     noise = rng.normal(0.0, config.gaussian_noise, (azimuths, rings)) if config.gaussian_noise else None
     low, high = max(config.min_range, config.range_min), min(config.max_range, config.range_max)
@@ -146,8 +147,10 @@ def onscan_reference(config: VelodyneConfig, directions: np.ndarray, ranges: np.
         for j in range(rings):
             measured = ranges[j, i]
             noisy = measured + noise[i, j] if noise is not None else measured
-            if low < noisy < high and low < measured < high and 0.0 >= config.min_intensity:
-                x, y, z = (noisy * directions[j, i, axis] for axis in range(3))
+            x, y, z = (noisy * directions[j, i, axis] for axis in range(3))
+            if config.organize_cloud:
+                cloud.append((x, y, z, 0.0, j, 0.0) if low < noisy < high else (math.nan,) * 4 + (j, 0.0))
+            elif low < noisy < high and low < measured < high and 0.0 >= config.min_intensity:
                 cloud.append((x, y, z, 0.0, j, 0.0))
     return np.array(cloud, dtype=POINT).tobytes()
 
@@ -158,25 +161,30 @@ def onscan_reference(config: VelodyneConfig, directions: np.ndarray, ranges: np.
     noise=st.sampled_from([0.0, 0.008, 2.0]),
     band=st.tuples(st.floats(0.0, 10.0), st.floats(5.0, 200.0)),
     seed=st.integers(0, 2**32 - 1),
+    kernel=st.booleans(),
+    organised=st.booleans(),
 )
-def test_the_cloud_is_onscan_point_for_point(grid, noise, band, seed) -> None:
-    """VelodyneCloud.points (scratch reused, noise drawn into it, points picked by index: issue #33) against OnScan's
-    loop written out: the same bytes, scan after scan, and the generator left where rng.normal leaves it."""
+def test_the_cloud_is_onscan_point_for_point(grid, noise, band, seed, kernel, organised) -> None:
+    """VelodyneCloud.points (issue #33: in C, tso_velodyne_cloud; in numpy, scratch reused, noise drawn into it,
+    points picked by index) against OnScan's loop written out: the same bytes, scan after scan, and the generator
+    left where rng.normal leaves it."""
     samples, rings = grid
     (config,) = read_sdf_sensors(vlp16(samples)).configs
     config = replace(config, vertical_samples=rings, min_range=band[0], max_range=band[1], gaussian_noise=noise)
+    config = replace(config, organize_cloud=organised)
     pitch, yaw = np.meshgrid(
         grid_angles(rings, config.vertical_min_angle, config.vertical_max_angle),
         grid_angles(samples, config.min_angle, config.max_angle),
         indexing="ij",
     )
     directions = np.stack((np.cos(pitch) * np.cos(yaw), np.cos(pitch) * np.sin(yaw), np.sin(pitch)), axis=-1)
-    cloud = VelodyneCloud(config, directions, np.random.default_rng(seed))
+    cloud = VelodyneCloud(config, directions, np.random.default_rng(seed), kernel=kernel)
+    assert kernel == (cloud._lib is not None), "libturtle_sim_ode_rays.so not found: run scripts/build.sh"
     reference_rng, ranges_rng = np.random.default_rng(seed), np.random.default_rng(seed + 1)
     for _ in range(3):
         ranges = ranges_rng.uniform(0.0, 140.0, (rings, samples))
         ranges[ranges_rng.random(ranges.shape) < 0.2] = config.range_max  # rays that hit nothing
         points, height, width, dense = cloud.points(ranges)
         assert points.tobytes() == onscan_reference(config, directions, ranges, reference_rng)
-        assert (height, width, dense) == (1, len(points), True)
+        assert (height, width, dense) == ((samples, rings, False) if organised else (1, len(points), True))
     assert cloud._rng.random() == reference_rng.random()

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 import random
-from typing import List, Optional, Tuple
+from typing import List, NamedTuple, Optional, Tuple
 
 import numpy as np
 
@@ -26,6 +26,16 @@ NO_COLOUR = (0.0, 0.0, 0.0)
 def grid_angles(count: int, low: float, high: float) -> np.ndarray:
     """Gazebo's MultiRayShape angles: ``count`` from ``low`` to ``high`` inclusive (``low`` alone for one ray)."""
     return low + np.arange(count) * ((high - low) / (count - 1)) if count > 1 else np.array([low])
+
+
+class ScanGeometry(NamedTuple):
+    """What a scan's rays are cast at, taken from the world at one sim time: the sensor's origin and rotation (world
+    from sensor), the primitive rows and the meshes within reach (sensors.ray_kernel's table and MeshItem)."""
+
+    origin: np.ndarray
+    rotation: np.ndarray
+    table: np.ndarray
+    meshes: List[MeshItem]
 
 
 class MultiBeamLidar(MountedSensor):
@@ -86,23 +96,32 @@ class MultiBeamLidar(MountedSensor):
             rows.append(primitive_row(self.physics.ground, NO_COLOUR))
         return np.array(rows), meshes
 
-    def ranges(self, noisy: bool = True) -> np.ndarray:
-        """The scan; ``noisy``: with the sensor's ``<ray><noise>`` (Gazebo's RaySensor adds it to the ranges of its
-        scan message; its ray shape, which gazebo_ros_block_laser reads, stays without: pass False)."""
-        config = self.config
+    def geometry(self) -> ScanGeometry:
+        """The scan's geometry now, copied out of the world (the thread that steps it must take it)."""
         origin, rotation = self.pose()
-        directions = self._local.reshape(-1, 3) @ rotation.T
-        table, meshes = self._shapes(origin)
+        return ScanGeometry(origin, rotation, *self._shapes(origin))
+
+    def cast(self, geometry: ScanGeometry, noisy: bool = True) -> np.ndarray:
+        """The scan of ``geometry``; it reads nothing of the world, so any one thread at a time may cast.
+        ``noisy``: with the sensor's ``<ray><noise>`` (Gazebo's RaySensor adds it to the ranges of its scan message;
+        its ray shape, which gazebo_ros_block_laser reads, stays without: pass False)."""
+        config = self.config
+        origin, rotation, table, meshes = geometry
+        local = self._local.reshape(-1, 3)
         if self._lib is not None:
             distance, self.tests = cast_rays(
-                self._lib, origin, directions, table, meshes, config.range_min, config.range_max, self._threads
+                self._lib, origin, rotation, local, table, meshes, config.range_min, config.range_max, self._threads
             )
         else:
-            distance = self._numpy_rays(origin, directions, table, meshes)
-        distance[~(distance <= config.range_max)] = config.range_max
+            distance = self._numpy_rays(origin, local @ rotation.T, table, meshes)
+            distance[~(distance <= config.range_max)] = config.range_max
         if noisy and (config.noise_stddev > 0 or config.noise_mean != 0):
             distance += self._rng.normal(config.noise_mean, config.noise_stddev, distance.shape)
         return distance.reshape(config.vertical_samples, config.samples)
+
+    def ranges(self, noisy: bool = True) -> np.ndarray:
+        """The scan of the world now (``noisy``: see cast)."""
+        return self.cast(self.geometry(), noisy)
 
     def _numpy_rays(
         self, origin: np.ndarray, directions: np.ndarray, table: np.ndarray, meshes: List[MeshItem]

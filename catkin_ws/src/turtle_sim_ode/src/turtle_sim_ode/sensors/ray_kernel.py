@@ -25,7 +25,8 @@ RGB = Tuple[float, float, float]
 def library() -> Optional[ctypes.CDLL]:
     """The loaded ray caster, or None if it is not built (searched once)."""
     lib = find_library(LIBRARY)
-    if lib is None or not all(hasattr(lib, name) for name in ("tso_render", "tso_cloud", "tso_rays")):
+    exported = ("tso_render", "tso_cloud", "tso_rays", "tso_velodyne_cloud")
+    if lib is None or not all(hasattr(lib, name) for name in exported):
         return None
     double_p, float_p, byte_p = (ctypes.POINTER(t) for t in (ctypes.c_double, ctypes.c_float, ctypes.c_uint8))
     lib.tso_render.restype = ctypes.c_long
@@ -37,8 +38,11 @@ def library() -> Optional[ctypes.CDLL]:
     lib.tso_cloud.argtypes = [ctypes.c_int, ctypes.c_int, float_p, byte_p] + [ctypes.c_double] * 5
     lib.tso_cloud.argtypes += [float_p, byte_p, ctypes.c_int]
     lib.tso_rays.restype = ctypes.c_long
-    lib.tso_rays.argtypes = [ctypes.c_int, double_p, double_p, ctypes.c_int, double_p, ctypes.c_int]
+    lib.tso_rays.argtypes = [ctypes.c_int, double_p, double_p, double_p, ctypes.c_int, double_p, ctypes.c_int]
     lib.tso_rays.argtypes += [ctypes.POINTER(Mesh), double_p, ctypes.c_double, ctypes.c_double, double_p, ctypes.c_int]
+    lib.tso_velodyne_cloud.restype = ctypes.c_long
+    lib.tso_velodyne_cloud.argtypes = [ctypes.c_int, ctypes.c_int, double_p, double_p] + [ctypes.c_double] * 3
+    lib.tso_velodyne_cloud.argtypes += [ctypes.c_int, ctypes.c_int, double_p, byte_p]
     return lib
 
 
@@ -168,6 +172,7 @@ def _mesh_table(meshes: Sequence[MeshItem]) -> Tuple[list, ctypes.Array]:
 def cast_rays(
     lib: ctypes.CDLL,
     origin: np.ndarray,
+    rotation: np.ndarray,
     directions: np.ndarray,
     table: np.ndarray,
     meshes: Sequence[MeshItem],
@@ -175,9 +180,10 @@ def cast_rays(
     t_max: float,
     threads: int,
 ) -> Tuple[np.ndarray, int]:
-    """tso_rays: the distance along each unit ray (``directions``, (N, 3), world frame) from ``origin`` to its
-    nearest hit on ``table``'s rows (planes too) and ``meshes`` within (t_min, t_max], inf where there is none; and
-    the ray tests made."""
+    """tso_rays: the distance along each unit ray (``directions``, (N, 3), in the frame that ``rotation`` (3 x 3)
+    takes to the world's) from ``origin`` to its nearest hit on ``table``'s rows (planes too) and ``meshes`` within
+    (t_min, t_max], t_max where there is none; and the ray tests made. The rays are turned in C: one call that lets
+    go of the GIL (a lidar's thread takes it back once, not after a matmul and a clamp as well)."""
     directions = np.ascontiguousarray(directions, dtype=np.float64).reshape(-1, 3)
     table = np.ascontiguousarray(table, dtype=np.float64).reshape(-1, STRIDE)
     arrays, mesh_table = _mesh_table(meshes)
@@ -186,11 +192,13 @@ def cast_rays(
     )
     radii = np.ascontiguousarray(radii, dtype=np.float64)
     origin = np.ascontiguousarray(origin, dtype=np.float64)
+    rotation = np.ascontiguousarray(rotation, dtype=np.float64)
     distance = np.empty(len(directions))
     double = ctypes.c_double
     tests = lib.tso_rays(
         len(directions),
         _pointer(origin, double),
+        _pointer(rotation, double),
         _pointer(directions, double),
         len(table),
         _pointer(table, double),
@@ -203,6 +211,39 @@ def cast_rays(
         threads,
     )
     return distance, tests
+
+
+def velodyne_cloud(
+    lib: ctypes.CDLL,
+    ranges: np.ndarray,
+    noise: Tuple[Optional[np.ndarray], float],
+    band: Tuple[float, float],
+    organised: bool,
+    intensity_kept: bool,
+    directions: np.ndarray,
+    points: np.ndarray,
+) -> int:
+    """tso_velodyne_cloud: a Velodyne's points of the scan ``ranges`` (rings, azimuths) into ``points`` (a record
+    array with room for every ray, POINT_STEP bytes each); ``noise``: standard normals (azimuths, rings) or None,
+    and the gaussianNoise they are scaled by; ``directions`` (azimuths, rings, 3) contiguous. Returns how many points
+    were written."""
+    azimuths, rings = directions.shape[:2]
+    ranges = np.ascontiguousarray(ranges, dtype=np.float64)
+    normals, sigma = noise
+    double = ctypes.c_double
+    return lib.tso_velodyne_cloud(
+        azimuths,
+        rings,
+        _pointer(ranges, double),
+        None if normals is None else _pointer(normals, double),
+        sigma,
+        band[0],
+        band[1],
+        int(organised),
+        int(intensity_kept),
+        _pointer(directions, double),
+        _pointer(points, ctypes.c_uint8),
+    )
 
 
 class RayCaster:

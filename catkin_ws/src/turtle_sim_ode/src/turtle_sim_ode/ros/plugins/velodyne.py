@@ -4,10 +4,11 @@ GazeboRosVelodyneLaser::OnScan (velodyne_gazebo_plugins 1.0.12) builds it: field
 ring within each; only ranges within (max(min_range, <range><min>), min(max_range, <range><max>)), with
 gaussianNoise added. Not organised (the default): the points in band only, height 1, is_dense. organize_cloud:
 width = rings, height = azimuths, NaN points out of band, not dense. Rays are cast only while someone subscribes
-(ConnectCb), at the sensor's <update_rate>."""
+(ConnectCb), at the sensor's <update_rate>; each cloud is made and published on the lidar's thread
+(sensors.plugins.velodyne's VelodyneScans), stamped with the sim time of the step whose world it shows."""
 from __future__ import annotations
 
-from typing import List
+from typing import List, Tuple
 
 import numpy as np
 import rospy
@@ -18,7 +19,8 @@ from turtle_sim_ode.ros.periodic import ModelContext, Periodic, packed_publisher
 from turtle_sim_ode.ros.plugin_topics import period, resolve_frame
 from turtle_sim_ode.ros.wire import release
 from turtle_sim_ode.sensors.lidar import MultiBeamLidar
-from turtle_sim_ode.sensors.plugins.velodyne import POINT_STEP, VelodyneCloud, VelodyneConfig
+from turtle_sim_ode.sensors.plugins.velodyne import POINT_STEP, VelodyneConfig, VelodyneScans
+from turtle_sim_ode.sensors.scan_thread import cpus_beside_stepping
 
 POINT_FIELDS = [
     PointField("x", 0, PointField.FLOAT32, 1),
@@ -42,27 +44,31 @@ class VelodynePublisher(Periodic):
     def __init__(self, lidar: MultiBeamLidar, namespace: str, rng: np.random.Generator) -> None:
         config = lidar.config
         super().__init__(period(config.update_rate))  # 0: every step, as Gazebo's sensors
-        self._lidar = lidar
-        self._cloud = VelodyneCloud(config, lidar.directions, rng)
         self._pub = packed_publisher(plugin_topic(namespace, config.topic), PointCloud2)
-        self._message = PointCloud2(fields=POINT_FIELDS, point_step=POINT_STEP)
+        self._message = PointCloud2(fields=POINT_FIELDS, point_step=POINT_STEP)  # filled on the lidar's thread only
         self._message.header.frame_id = velodyne_frame(config, namespace)
         self._pack = packer(self._message)
+        self._scans = VelodyneScans(lidar, rng, self._publish_cloud)
         self.scans = 0  # scans cast: none while no one subscribes
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
         if not self._pub.get_num_connections():
             return
-        cloud, height, width, dense = self._cloud.points(self._lidar.ranges())
+        self._scans.scan((stamp.secs, stamp.nsecs))
         self.scans += 1
+
+    def _publish_cloud(self, cloud: np.ndarray, height: int, width: int, dense: bool, stamp: Tuple[int, int]) -> None:
         message = self._message
         message.height, message.width, message.row_step = height, width, POINT_STEP * width
-        self._pub.publish(self._pack, stamp.secs, stamp.nsecs, cloud, dense)
+        self._pub.publish(self._pack, *stamp, cloud, dense)
 
     def close(self) -> None:
-        release(self._pub)
+        try:
+            self._scans.close()
+        finally:
+            release(self._pub)
 
 
 def interfaces(context: ModelContext, config: VelodyneConfig) -> List[Periodic]:
-    lidar = MultiBeamLidar(context.sim.physics, context.model, config)
+    lidar = MultiBeamLidar(context.sim.physics, context.model, config, threads=cpus_beside_stepping())
     return [VelodynePublisher(lidar, context.namespace, np.random.default_rng())]
