@@ -125,6 +125,7 @@ class PhysicsWorld:
         self.params = params
         configure_world(self.world, self.params)
         self._stepper = self.world.quickStep if params.solver == "quick" else self.world.step
+        self._kernel_stale = True  # the kernel steps by the time step and with the solver it was last given
         self._pair_cache.clear()
         self._set_ground_surface(self._ground_given or params.ground_surface)
 
