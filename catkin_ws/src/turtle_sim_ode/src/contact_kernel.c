@@ -48,6 +48,9 @@ struct TsoContactKernel
   int joint_count;
   TsoWatchedContact* watched;
   int watched_count, watched_capacity;
+  dWorldID world; /* what tso_kernel_step steps, and how */
+  double step_size;
+  int quick;
 };
 
 static int compare_geoms(const void* a, const void* b)
@@ -412,6 +415,25 @@ int tso_kernel_collide(TsoContactKernel* kernel)
   for (i = 0; i < kernel->self_colliding_count; ++i)
     dSpaceCollide(kernel->self_colliding[i], kernel, near_callback);
   return kernel->joint_count;
+}
+
+void tso_kernel_set_step(TsoContactKernel* kernel, dWorldID world, double step_size, int quick)
+{
+  kernel->world = world;
+  kernel->step_size = step_size;
+  kernel->quick = quick;
+}
+
+int tso_kernel_step(TsoContactKernel* kernel)
+{
+  int joints = tso_kernel_collide(kernel);
+  if (kernel->world == NULL)
+    return joints;
+  if (kernel->quick)
+    dWorldQuickStep(kernel->world, kernel->step_size);
+  else
+    dWorldStep(kernel->world, kernel->step_size);
+  return joints;
 }
 
 const TsoWatchedContact* tso_kernel_watched(const TsoContactKernel* kernel, int* count)

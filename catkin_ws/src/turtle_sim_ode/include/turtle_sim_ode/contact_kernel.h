@@ -57,6 +57,12 @@ extern "C"
   /* Destroy the last step's contact joints, then collide: ground tests, the top space, each self-colliding space.
    * Returns the number of contact joints made. */
   int tso_kernel_collide(TsoContactKernel* kernel);
+  /* What tso_kernel_step steps: ``world`` by ``step_size`` with dWorldQuickStep if ``quick``, else dWorldStep. */
+  void tso_kernel_set_step(TsoContactKernel* kernel, dWorldID world, double step_size, int quick);
+  /* tso_kernel_collide, then the step set by tso_kernel_set_step (none before): a whole physics step in one call,
+   * which ctypes makes without holding Python's GIL (PyODE's World.step holds it). Returns the number of contact
+   * joints made. */
+  int tso_kernel_step(TsoContactKernel* kernel);
   /* The contacts touching watched geoms found by the last collide; *count is set to their number. */
   const TsoWatchedContact* tso_kernel_watched(const TsoContactKernel* kernel, int* count);
   /* The one joint of ODE type ``type`` (dJointTypeHinge, dJointTypeSlider, ...) between bodies a and b (either may

@@ -87,9 +87,11 @@ def _declare(lib: ctypes.CDLL) -> ctypes.CDLL:
         "tso_kernel_set_excluded": (integer, [pointer, integer, pointers]),
         "tso_kernel_set_ground_tests": (integer, [pointer, pointer, integer, pointers]),
         "tso_kernel_set_spaces": (integer, [pointer, pointer, integer, pointers, integer]),
-        "tso_kernel_collide": (integer, [pointer]),
+        "tso_kernel_set_step": (None, [pointer, pointer, ctypes.c_double, integer]),
+        "tso_kernel_step": (integer, [pointer]),
         "tso_kernel_watched": (ctypes.POINTER(_WatchedContact), [pointer, ctypes.POINTER(ctypes.c_int)]),
         "dGeomGetBody": (pointer, [pointer]),  # libode's, found through the kernel's dependencies
+        "dBodyGetWorld": (pointer, [pointer]),
         "tso_joint_between": (pointer, [pointer, pointer, integer]),
         "tso_count_turns": (None, [integer, pointers, doubles, doubles]),
         "tso_damp_joints": (None, [integer, pointers, ctypes.POINTER(ctypes.c_ubyte), doubles]),
@@ -126,7 +128,7 @@ class ContactKernel:
         if not self._handle:
             raise MemoryError("tso_kernel_create")
         self._count = ctypes.c_int()
-        self._collide = lib.tso_kernel_collide
+        self._step = lib.tso_kernel_step
 
     @property
     def library(self) -> ctypes.CDLL:
@@ -177,9 +179,22 @@ class ContactKernel:
         if any(results):
             raise MemoryError("the contact kernel could not store its tables")
 
-    def collide(self) -> int:
-        """Destroy the last contact joints and make this step's; returns their number."""
-        return self._collide(self._handle)
+    def set_step(self, world_id: int, time_step: float, quick: bool) -> None:
+        """What ``step`` steps: the world ``world_id`` (see ``world_id``) by ``time_step`` with the quick solver or
+        the world solver, as PyODE's World.quickStep or World.step would."""
+        self._lib.tso_kernel_set_step(self._handle, world_id, time_step, int(quick))
+
+    def step(self) -> int:
+        """Destroy the last step's contact joints, make this step's, then step as set by ``set_step``; returns the
+        contact joints made. The whole step is one ctypes call, which runs without the GIL (PyODE's World.step holds
+        it): the node's other threads may run meanwhile (see the README's performance section)."""
+        return self._step(self._handle)
+
+    def world_id(self, world: ode.World) -> int:
+        """The ODE id of a PyODE World (which has no ``_id`` either), read through a body made in it for the
+        purpose and destroyed with its wrapper."""
+        body = ode.Body(world)  # alive until its world is read
+        return self._lib.dBodyGetWorld(self.body_id(body)) or 0
 
     def body_id(self, body: Any) -> int:
         """The ODE id of a PyODE Body (0 for None), read through a probe geom: PyODE gives bodies no ``_id``."""

@@ -61,6 +61,9 @@ class PhysicsWorld:
         self._contact_count = 0
         self._kernel = ContactKernel.load() if contact_kernel else None
         self._kernel_stale = True  # its tables must be set again before the next step
+        self._world_id = self._kernel.world_id(self.world) if self._kernel is not None else 0
+        if not self._world_id:  # the world's id cannot be told: the Python path steps it
+            self._kernel = None
         self._body_ids: Dict[ode.Body, int] = {}
         self._stepper = self.world.quickStep if p.solver == "quick" else self.world.step
         # sim_time = _time_base + _steps * time_step: exact, and continuous when time_step changes.
@@ -122,6 +125,7 @@ class PhysicsWorld:
         self.params = params
         configure_world(self.world, self.params)
         self._stepper = self.world.quickStep if params.solver == "quick" else self.world.step
+        self._kernel_stale = True  # the kernel steps by the time step and with the solver it was last given
         self._pair_cache.clear()
         self._set_ground_surface(self._ground_given or params.ground_surface)
 
@@ -299,20 +303,24 @@ class PhysicsWorld:
         for watch in self._watches:
             watch._contacts = []
         if self._kernel is not None:
-            self._collide_in_kernel(self._kernel)
+            # The hooks come first here: they read the bodies' state and forces, which colliding does not change.
+            for hook in self._pre_step_hooks:
+                hook()
+            self._step_in_kernel(self._kernel)
         else:
             self._collide_in_python()
-        for hook in self._pre_step_hooks:
-            hook()
-        self._stepper(self.params.time_step)
+            for hook in self._pre_step_hooks:
+                hook()
+            self._stepper(self.params.time_step)
         self._steps += 1
         for hook in self._post_step_hooks:
             hook()
 
-    def _collide_in_kernel(self, kernel: ContactKernel) -> None:
+    def _step_in_kernel(self, kernel: ContactKernel) -> None:
+        """Collide and integrate in one call of the kernel, without the GIL (see ContactKernel.step)."""
         if self._kernel_stale:
             self._set_kernel_tables(kernel)
-        self._contact_count = kernel.collide()
+        self._contact_count = kernel.step()
         for watch in self._watches:
             watch._fill = self._fill_watches
 
@@ -353,6 +361,7 @@ class PhysicsWorld:
             [space._id() for space in self._self_colliding],
             self.params.max_contacts,
         )
+        kernel.set_step(self._world_id, self.params.time_step, self.params.solver == "quick")
         self._kernel_stale = False
 
     def _collide_in_python(self) -> None:
