@@ -312,7 +312,7 @@ def copy_upstream_package(location, package, destination):
 def test_smb_gazebo_of_the_course_builds_unchanged(tmp_path):
     """ETH's smb_gazebo as the course ships it: its odometry_source_plugin (src/OdometrySource.cpp, through
     include/smb_gazebo/OdometrySource.hpp) is built empty, the package's catkin_package(LIBRARIES ...), links and
-    install(TARGETS) hold."""
+    install(TARGETS) hold, and the line says the simulator simulates libodometry_source_plugin.so."""
     location = smb_common()
     needs_devel_space()
     (tmp_path / "src").mkdir()
@@ -324,3 +324,5 @@ def test_smb_gazebo_of_the_course_builds_unchanged(tmp_path):
     assert len(lines) == 1, output[-5000:]
     assert "src/OdometrySource.cpp includes include/smb_gazebo/OdometrySource.hpp" in lines[0]
     assert "<gazebo/physics/physics.hh>" in lines[0]
+    # turtle_sim_ode does the plugin's work (world/plugins/odometry_source.py)
+    assert SIMULATED % "odometry_source_plugin" in lines[0]

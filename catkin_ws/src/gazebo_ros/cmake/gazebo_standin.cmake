@@ -38,6 +38,13 @@ else()
     COMMAND "${PYTHON_EXECUTABLE}" "${CMAKE_CURRENT_LIST_DIR}/simulated_plugins.py"
             "${CMAKE_CURRENT_LIST_DIR}/../../turtle_sim_ode/src"
     OUTPUT_VARIABLE GAZEBO_STANDIN_SIMULATED_PLUGINS ERROR_VARIABLE simulated_plugins_error)
+  # read again when a plugin is added to turtle_sim_ode (each is a line in one of these catalogues)
+  foreach(catalogue world/plugins/__init__.py sensors/plugins/__init__.py)
+    set(catalogue "${CMAKE_CURRENT_LIST_DIR}/../../turtle_sim_ode/src/turtle_sim_ode/${catalogue}")
+    if(EXISTS "${catalogue}")
+      set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${catalogue}")
+    endif()
+  endforeach()
   if(NOT GAZEBO_STANDIN_SIMULATED_PLUGINS)
     message(WARNING "${PROJECT_NAME}: ${simulated_plugins_error}the gazebo stand-in cannot tell which Gazebo plugins "
                     "turtle_sim_ode simulates")
