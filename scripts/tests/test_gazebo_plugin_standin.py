@@ -12,7 +12,7 @@ import shutil
 import subprocess
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from test_find_package_gazebo import DEVEL, MANIFEST, catkin_make, needs_devel_space, write_package
@@ -268,7 +268,7 @@ def include_lines(draw, header):
     return "%s#%sinclude%s%s%s%s" % (before, after_hash, after_include, opening, header, closing)
 
 
-@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=30, deadline=None)
 @given(
     uses_gazebo=st.booleans(),
     where=st.sampled_from(["source", "header in include/", "header beside the source"]),
