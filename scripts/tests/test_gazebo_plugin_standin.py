@@ -147,6 +147,16 @@ def test_a_package_with_a_gazebo_plugin_builds_beside_a_second_one(tmp_path):
     assert "secondMathAnswer()" in dynamic_symbols(str(lib / "libsecond_math.so"))
     assert "PoseSource" not in dynamic_symbols(str(lib / "libpose_source_plugin.so"))
     assert os.access(str(lib / "scratch_plugins" / "wheel_node"), os.X_OK)
+    # install(TARGETS) of the plugin holds too
+    installed = subprocess.run(
+        ["make", "-C", str(tmp_path / "build"), "install"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        universal_newlines=True,
+    )
+    assert installed.returncode == 0, installed.stdout[-3000:]
+    assert (tmp_path / "install" / "lib" / "libpose_source_plugin.so").exists()
+    assert (tmp_path / "install" / "lib" / "scratch_plugins" / "wheel_node").exists()
     # one line per plugin, naming the target, the file that brings Gazebo in, and what the simulator does with it
     lines = [line for line in output.splitlines() if "gazebo stand-in: library" in line]
     assert len(lines) == 2, "\n".join(lines)
