@@ -33,7 +33,23 @@ if(real_gazebo_config)
   message(STATUS "${PROJECT_NAME}: Gazebo's own CMake package (${real_gazebo_config}) is used, no stand-in written")
   file(REMOVE_RECURSE "${CATKIN_DEVEL_PREFIX}/share/gazebo")
 else()
-  foreach(name gazebo-config.cmake gazebo-config-version.cmake)
+  # turtle_sim_ode's sources beside this package come first: in a fresh workspace it is not on PYTHONPATH yet
+  execute_process(
+    COMMAND "${PYTHON_EXECUTABLE}" "${CMAKE_CURRENT_LIST_DIR}/simulated_plugins.py"
+            "${CMAKE_CURRENT_LIST_DIR}/../../turtle_sim_ode/src"
+    OUTPUT_VARIABLE GAZEBO_STANDIN_SIMULATED_PLUGINS ERROR_VARIABLE simulated_plugins_error)
+  # read again when a plugin is added to turtle_sim_ode (each is a line in one of these catalogues)
+  foreach(catalogue world/plugins/__init__.py sensors/plugins/__init__.py)
+    set(catalogue "${CMAKE_CURRENT_LIST_DIR}/../../turtle_sim_ode/src/turtle_sim_ode/${catalogue}")
+    if(EXISTS "${catalogue}")
+      set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${catalogue}")
+    endif()
+  endforeach()
+  if(NOT GAZEBO_STANDIN_SIMULATED_PLUGINS)
+    message(WARNING "${PROJECT_NAME}: ${simulated_plugins_error}the gazebo stand-in cannot tell which Gazebo plugins "
+                    "turtle_sim_ode simulates")
+  endif()
+  foreach(name gazebo-config.cmake gazebo-config-version.cmake gazebo-standin-plugins.cmake)
     configure_file("${CMAKE_CURRENT_LIST_DIR}/${name}.in" "${standin_dir}/${name}" @ONLY)
   endforeach()
   # generated, so outside the package's source

@@ -120,7 +120,7 @@ class SimulatorNode:
         if check_topic is None:
             check_topic = TopicTypes(name, known_topic_types())
         plugins = self.sim.plugins.get(name)
-        publishes_tf = plugins is not None and any(broadcasts_tf(drive) for drive in plugins.drives)
+        publishes_tf = plugins is not None and any(broadcasts_tf(config) for config in plugins.configs)
         if self._tf is None and self.settings.publish_tf and publishes_tf:
             self._tf = PackedPublisher("/tf", TFMessage)
         # pace_from_now: the run loop re-anchors its pacing after the step (see _run_paced), not catching it up.
@@ -308,10 +308,10 @@ def quiet_steps(now: float, due: float, time_step: float) -> int:
     return int((due - now) / time_step + DUE_STEPS_ROUNDING) - 1
 
 
-def broadcasts_tf(drive) -> bool:  # type: ignore[no-untyped-def]
-    """Whether a drive plugin's config asks for odometry on /tf (diff drive and Kobuki: publishTf/publish_tf,
-    skid steer: broadcastTF)."""
-    return bool(getattr(drive, "publish_tf", False) or getattr(drive, "broadcast_tf", False))
+def broadcasts_tf(config) -> bool:  # type: ignore[no-untyped-def]
+    """Whether a plugin's config asks for odometry on /tf (diff drive, Kobuki and smb_gazebo's odometry source:
+    publishTf/publish_tf, skid steer: broadcastTF)."""
+    return bool(getattr(config, "publish_tf", False) or getattr(config, "broadcast_tf", False))
 
 
 def release_memory() -> None:

@@ -24,6 +24,7 @@ from turtle_sim_ode.ros.plugins import (
     joint_state_publisher,
     kobuki,
     laser,
+    odometry_source,
     p3d,
     planar_move,
     range_finder,
@@ -51,6 +52,7 @@ from turtle_sim_ode.world.plugins.ft_sensor import FtSensorConfig
 from turtle_sim_ode.world.plugins.hector_gps import HectorGpsConfig
 from turtle_sim_ode.world.plugins.hector_imu import HectorImuConfig
 from turtle_sim_ode.world.plugins.kobuki import KobukiConfig
+from turtle_sim_ode.world.plugins.odometry_source import OdometrySourceConfig
 from turtle_sim_ode.world.plugins.planar_move import PlanarMoveConfig
 from turtle_sim_ode.world.plugins.ros_control import RosControlPluginConfig
 from turtle_sim_ode.world.plugins.skid_steer_drive import SkidSteerConfig
@@ -66,6 +68,7 @@ ADAPTERS: Dict[type, Adapter] = {
     PlanarMoveConfig: planar_move.interfaces,
     TricycleConfig: tricycle_drive.interfaces,
     GroundTruthConfig: p3d.interfaces,
+    OdometrySourceConfig: odometry_source.interfaces,
     JointStatesConfig: joint_state_publisher.interfaces,
     LaserConfig: laser.interfaces,
     ContactConfig: bumper.interfaces,
