@@ -163,13 +163,13 @@ def measure_rtf_task(
     # them), for its arrival times; the rest drained every READ_BATCH_S.
     master_uri, caller_id = rosgraph.get_master_uri(), rospy.get_name()
     clock_stream = TopicStream(master_uri, caller_id, "/clock", on_clock, tcp_nodelay=True)
-    streams = [TopicStream(master_uri, caller_id, t) for t in topics if t != "/clock" and t not in bulk_topics]
-    readers = [Reader([clock_stream]), Reader(streams, READ_BATCH_S)]
-    if bulk_topics:  # megabytes a message: read at once, as a roscpp or rospy subscriber's thread would
-        camera_streams = [TopicStream(master_uri, caller_id, topic, bulk=True) for topic in bulk_topics]
-        readers.append(Reader(camera_streams))
-        streams += camera_streams
-    streams.append(clock_stream)
+    batched = [TopicStream(master_uri, caller_id, t) for t in topics if t != "/clock" and t not in bulk_topics]
+    readers = [Reader([clock_stream]), Reader(batched, READ_BATCH_S)]
+    # megabytes a message: read at once, as a roscpp or rospy subscriber's thread would
+    bulk = [TopicStream(master_uri, caller_id, topic, bulk=True) for topic in bulk_topics]
+    if bulk:
+        readers.append(Reader(bulk))
+    streams = batched + bulk + [clock_stream]
 
     def counts() -> Dict[str, int]:
         return {stream.topic: stream.count for stream in streams}

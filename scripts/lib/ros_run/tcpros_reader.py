@@ -149,7 +149,7 @@ class Reader:
     on a VM), and a reader that drains its sockets a few hundred times a second spares it most of them."""
 
     def __init__(self, streams: List[TopicStream], batch_s: float = 0.0) -> None:
-        self.streams = streams
+        self.streams = list(streams)  # its own: ``close`` shuts exactly these, whatever becomes of the caller's list
         self.error: Optional[BaseException] = None
         self._batch_s = batch_s
         self._selector = selectors.DefaultSelector()
