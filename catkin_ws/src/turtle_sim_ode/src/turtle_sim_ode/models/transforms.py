@@ -44,6 +44,12 @@ def quat_rotate(q: Quat, v: Vec3) -> Vec3:
     return (v[0] + w * tx + y * tz - z * ty, v[1] + w * ty + z * tx - x * tz, v[2] + w * tz + x * ty - y * tx)
 
 
+def quat_normalised(q: Quat) -> Quat:
+    """``q`` of unit length (the identity for a zero quaternion)."""
+    norm = math.sqrt(sum(c * c for c in q))
+    return tuple(c / norm for c in q) if norm > 0 else (1.0, 0.0, 0.0, 0.0)  # type: ignore[return-value]
+
+
 def quat_matrix(q: Quat) -> Matrix3:
     columns = [quat_rotate(q, axis) for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
     return tuple(tuple(columns[c][r] for c in range(3)) for r in range(3))  # type: ignore[return-value]

@@ -14,9 +14,10 @@ from dataclasses import dataclass, field
 from typing import Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.built import BuiltModel
-from turtle_sim_ode.models.transforms import Quat, quat_from_rpy, quat_multiply, quat_rotate
+from turtle_sim_ode.models.transforms import Quat, quat_from_rpy, quat_multiply, quat_normalised, quat_rotate
 from turtle_sim_ode.models.text import read_number, robot_namespace_tag
 from turtle_sim_ode.models.description import GazeboPlugin
+from turtle_sim_ode.world.kinematics import conjugate
 from turtle_sim_ode.world.plugins.hector_sensor_model import ErrorModel, SensorError, Vec3, error_model, vector_tag
 from turtle_sim_ode.world.plugins.tags import text
 
@@ -73,15 +74,6 @@ class HectorImuReading:
     accel_bias: Vec3
 
 
-def _conjugate(q: Quat) -> Quat:
-    return (q[0], -q[1], -q[2], -q[3])
-
-
-def _normalised(q: Quat) -> Quat:
-    norm = math.sqrt(sum(c * c for c in q))
-    return tuple(c / norm for c in q) if norm > 0 else (1.0, 0.0, 0.0, 0.0)  # type: ignore[return-value]
-
-
 class HectorImu:
     """GazeboRosIMU's state on a model's link: ``update(now)`` at each of its updates."""
 
@@ -112,20 +104,20 @@ class HectorImu:
         dt = now - self._last if self._last is not None else 0.0  # getTimeSinceLastUpdate: 0 at the first
         self._last = now
         _, pose_rotation = self.model.link_transform(self.link)
-        rotation = _normalised(quat_multiply(self._offset, pose_rotation))
+        rotation = quat_normalised(quat_multiply(self._offset, pose_rotation))
         velocity, _ = self.model.link_twist(self.link)
         if dt > 0.0:
             change = tuple((v - old) / dt - g for v, old, g in zip(velocity, self._velocity, self.gravity))
-            self._accel = quat_rotate(_conjugate(rotation), change)  # type: ignore[arg-type]
+            self._accel = quat_rotate(conjugate(rotation), change)  # type: ignore[arg-type]
         self._velocity = tuple(velocity)  # type: ignore[assignment]
-        delta = quat_multiply(_conjugate(self._orientation), rotation)
+        delta = quat_multiply(conjugate(self._orientation), rotation)
         self._orientation = rotation
         if dt > 0.0:
             w = max(-1.0, min(1.0, delta[0]))
             axis_norm = math.sqrt(delta[1] ** 2 + delta[2] ** 2 + delta[3] ** 2)
             angle = 2.0 * math.acos(w)
             axis = tuple(c / axis_norm for c in delta[1:]) if axis_norm > 0 else (0.0, 0.0, 0.0)
-            self._rate = quat_rotate(_conjugate(self._offset), tuple(angle * c / dt for c in axis))  # type: ignore
+            self._rate = quat_rotate(conjugate(self._offset), tuple(angle * c / dt for c in axis))  # type: ignore
         accel = self.accel_error.apply(self._accel, dt)
         rate = self.rate_error.apply(self._rate, dt)
         self.yaw_error.apply((0.0, 0.0, 0.0), dt)
@@ -134,7 +126,7 @@ class HectorImu:
         accel_drift = quat_rotate(pose_rotation, self.accel_error.bias)
         yaw = self.yaw_error.bias[0]
         tilt = (1.0, 0.5 * accel_drift[1] / g, -0.5 * accel_drift[0] / g, 0.0) if g > 0 else (1.0, 0.0, 0.0, 0.0)
-        error = _normalised(quat_multiply((math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)), tilt))
+        error = quat_normalised(quat_multiply((math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)), tilt))
         return HectorImuReading(
             orientation=quat_multiply(error, rotation),
             angular_velocity=rate,

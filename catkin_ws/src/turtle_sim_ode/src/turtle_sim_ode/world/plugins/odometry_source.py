@@ -10,7 +10,16 @@ from typing import Callable, Mapping, Optional, Tuple
 
 from turtle_sim_ode.models.text import ModelError, robot_namespace_tag
 from turtle_sim_ode.models.description import GazeboPlugin
-from turtle_sim_ode.models.transforms import Quat, Vec3, quat_from_rpy, quat_multiply, quat_rotate, rpy_of
+from turtle_sim_ode.models.transforms import (
+    Quat,
+    Vec3,
+    quat_from_rpy,
+    quat_multiply,
+    quat_normalised,
+    quat_rotate,
+    rpy_of,
+)
+from turtle_sim_ode.world.kinematics import conjugate
 from turtle_sim_ode.world.plugins.p3d import noisy
 from turtle_sim_ode.world.plugins.tags import flag, number, text, triple
 
@@ -77,19 +86,6 @@ class OdometryReading:
     variance: float
 
 
-def _length(v: Vec3) -> float:
-    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-
-
-def _conjugate(q: Quat) -> Quat:
-    return (q[0], -q[1], -q[2], -q[3])
-
-
-def _normalized(q: Quat) -> Quat:
-    size = math.sqrt(sum(c * c for c in q))
-    return (q[0] / size, q[1] / size, q[2] / size, q[3] / size)
-
-
 class OdometrySource:
     """OdometrySource::UpdateChild, called every step with the sim time: first it waits for the link to rest (a
     check each second of sim time; once both speeds are under the thresholds, the odometry frame is the link's
@@ -127,7 +123,7 @@ class OdometrySource:
         position, orientation, linear, angular = read_state()
         # Upstream compares both speeds with maxAngularSpeedBeforeSettle (maxLinearSpeedBeforeSettle is only logged)
         limit = self.config.max_angular_speed_before_settle
-        if _length(linear) < limit and _length(angular) < limit:
+        if math.hypot(*linear) < limit and math.hypot(*angular) < limit:
             self.odom_frame = (position, quat_from_rpy(0.0, 0.0, rpy_of(orientation)[2]))
         else:
             self._last = now  # checked again a second later; last_time_ stays put once settled
@@ -136,20 +132,20 @@ class OdometrySource:
         assert self.odom_frame is not None
         origin, heading = self.odom_frame
         position, orientation, linear, angular = state
-        back = _conjugate(heading)
+        back = conjugate(heading)
         relative = quat_rotate(back, (position[0] - origin[0], position[1] - origin[1], position[2] - origin[2]))
         rotation = quat_multiply(back, orientation)
         # Upstream turns the world velocities by the frame's heading (RotateVector, not its inverse), then into the
         # link's axes relative to the frame: the body-axes twist when the frame's heading is 0, turned by twice
         # that heading otherwise.
-        to_link = _conjugate(rotation)
+        to_link = conjugate(rotation)
         linear = quat_rotate(to_link, quat_rotate(heading, linear))
         angular = quat_rotate(to_link, quat_rotate(heading, angular))
         offset = self.config.xyz_offset
         sigma = self.config.gaussian_noise
         return OdometryReading(
             position=(relative[0] + offset[0], relative[1] + offset[1], relative[2] + offset[2]),
-            orientation=_normalized(quat_multiply(self._offset_rotation, rotation)),
+            orientation=quat_normalised(quat_multiply(self._offset_rotation, rotation)),
             linear=noisy(linear, sigma),
             angular=noisy(angular, sigma),
             variance=sigma * sigma,
