@@ -89,7 +89,26 @@ def find_upstream(env_var: str, url: str, cache: str, ref: str) -> Tuple[Optiona
                 f" ({_failure(error)}); set {env_var} to a checkout or git mirror of it"
                 f" (git clone --mirror {url} DIR) or put that mirror at {cache}"
             )
+    if not _has_commit(cache, ref):  # a clone still running or left half made (by a run stopped mid-clone)
+        return None, (
+            f"no upstream source of {url}: ${env_var} is not set and {cache} has no commit {ref} (a clone in"
+            f" progress or a broken one); remove it, or set {env_var} to a checkout or git mirror of it"
+        )
     return UpstreamSource(cache, ref), f"mirror {cache}"
+
+
+def _has_commit(location: str, ref: str) -> bool:
+    """Whether the git repository at ``location`` resolves ``ref`` to a commit."""
+    try:
+        subprocess.run(
+            ["git", "--git-dir", location, "rev-parse", "--verify", "--quiet", ref + "^{commit}"],
+            check=True,
+            capture_output=True,
+            timeout=GIT_TIMEOUT,
+        )
+    except (subprocess.SubprocessError, OSError):
+        return False
+    return True
 
 
 def _failure(error: Exception) -> str:

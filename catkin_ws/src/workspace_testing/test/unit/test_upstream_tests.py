@@ -59,6 +59,20 @@ def test_no_repository_is_said_so(tmp_path: Path, monkeypatch: pytest.MonkeyPatc
         UpstreamSource(str(tmp_path / "nowhere"))
 
 
+def test_a_half_made_mirror_is_no_source(upstream: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # what `git clone --mirror` has written before it fetches: HEAD and objects/, no refs (CI once found one, left
+    # by a run stopped mid-clone, and failed on it instead of skipping)
+    monkeypatch.delenv("UPSTREAM_TEST_REPO", raising=False)
+    cache = tmp_path / "cache.git"
+    subprocess.run(["git", "init", "-q", "--bare", str(cache)], check=True)
+    source, why = find_upstream("UPSTREAM_TEST_REPO", str(upstream), str(cache), "HEAD")
+    assert source is None and f"{cache} has no commit HEAD" in why and "\n" not in why
+    subprocess.run(["git", "--git-dir", str(cache), "fetch", "-q", str(upstream), "HEAD:refs/heads/main"], check=True)
+    subprocess.run(["git", "--git-dir", str(cache), "symbolic-ref", "HEAD", "refs/heads/main"], check=True)
+    source, _ = find_upstream("UPSTREAM_TEST_REPO", str(upstream), str(cache), "HEAD")
+    assert source is not None and set(source.files_under("pkg/test")) == {"pkg/test/a.test"}
+
+
 def test_the_scratch_package_holds_upstreams_files_and_its_own_build(upstream: Path, tmp_path: Path) -> None:
     files = UpstreamSource(str(upstream)).files_under("pkg")
     gtest = GTest("a-test", "test/a.test", ("test/a.cpp",), ("${OpenCV_LIBRARIES}",))
