@@ -46,7 +46,7 @@ class OdometrySourcePublisher(Periodic):
             return
         w, x, y, z = reading.orientation
         secs, nsecs = stamp.secs, stamp.nsecs
-        if self._pub.get_num_connections():
+        if self._pub.heard():  # lock-free: asked at every reading
             self._pub.publish(
                 self._packer.pack, secs, nsecs, reading.position, (x, y, z, w), reading.linear, reading.angular
             )
