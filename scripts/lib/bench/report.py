@@ -74,12 +74,19 @@ def find_run(results: Dict[str, Any], robots: int, time_step: float) -> Optional
 def targets(results: Dict[str, Any]) -> List[Dict[str, Any]]:
     """Issue #8's, #15's, #30's and #33's targets: name, value, goal, pass (None when not measured in this run)."""
     one_1ms, one_10ms, ten_1ms = find_run(results, 1, 0.001), find_run(results, 1, 0.01), find_run(results, 10, 0.001)
-    physics_rtf = results.get("physics_only", {}).get("rtf")
+    physics = results.get("physics_only", {})
+    physics_rtf, sustained_rtf = physics.get("rtf"), physics.get("sustained", {}).get("rtf")
     rows: List[Tuple[str, Optional[float], str, Callable[[float], bool]]] = [
         ("1 TurtleBot, 1 ms: RTF", one_1ms and one_1ms["rtf"], ">= 25", lambda v: v >= 25),
         (
-            "1 TurtleBot, 1 ms: RTF / physics-only RTF",
+            "1 TurtleBot, 1 ms: RTF / physics-only RTF, best of short runs",
             one_1ms and physics_rtf and one_1ms["rtf"] / physics_rtf,
+            ">= 0.85",
+            lambda v: v >= 0.85,
+        ),
+        (
+            "1 TurtleBot, 1 ms: RTF / physics-only RTF, sustained as the node's",
+            one_1ms and sustained_rtf and one_1ms["rtf"] / sustained_rtf,
             ">= 0.85",
             lambda v: v >= 0.85,
         ),
@@ -202,6 +209,14 @@ def table(results: Dict[str, Any]) -> str:
         return [
             "%-34s %9.0f steps/s %7.1f us/step  RTF %6.1f  contacts %d"
             % ("ours: Simulation.step", p["steps_per_s"], p["us_per_step"], p["rtf"], p["contacts_per_step"]),
+            "%-34s %9.0f steps/s %7.1f us/step  RTF %6.1f  (%g s of wall time in one go, as the node is measured)"
+            % (
+                "ours, sustained",
+                p["sustained"]["steps_per_s"],
+                p["sustained"]["us_per_step"],
+                p["sustained"]["rtf"],
+                p["sustained"]["wall_s"],
+            ),
             "%-34s %9.0f steps/s %7.1f us/step  RTF %6.1f  contacts %d"
             % (
                 "floor: bare PyODE collide+quickStep",

@@ -24,6 +24,7 @@ from turtle_sim_ode.ros.pacing import pacing_problem
 from turtle_sim_ode.ros.physics_reconfigure import PhysicsReconfigure
 from turtle_sim_ode.ros.spawn import ModelSpawner
 from turtle_sim_ode.ros.throttle import logwarn_every
+from turtle_sim_ode.ros.wire import heard
 from turtle_sim_ode.world.simulation import Simulation
 from turtle_sim_ode.world.values import WorldError
 
@@ -349,12 +350,19 @@ class GazeboApi:
         self._on_time_change("reset_simulation")
 
     # --- state topics ---------------------------------------------------------------------------------------
+    def states_due(self) -> float:
+        """Sim time of the next model_states or link_states message; infinite while nobody listens, so that the
+        unpaced loop need not stop for them (a subscriber that comes gets the next step's)."""
+        if heard(self._model_states_pub) or heard(self._link_states_pub):
+            return self.next_states_time
+        return math.inf
+
     def publish_states(self, now: float) -> None:
         """Publish model_states and link_states if someone listens and they are due (call from the sim loop)."""
         if now < self.next_states_time:
             return
         self.next_states_time = now + self.states_period
-        if self._model_states_pub.get_num_connections():
+        if heard(self._model_states_pub):
             states = ModelStates()
             for name in self._sim.models:
                 position, quaternion, linear, angular = self._sim.get_model_state(name, "")
@@ -362,7 +370,7 @@ class GazeboApi:
                 states.pose.append(pose_msg(position, quaternion))
                 states.twist.append(twist_msg(linear, angular))
             self._model_states_pub.publish(states)
-        if self._link_states_pub.get_num_connections():
+        if heard(self._link_states_pub):
             states = LinkStates()
             for name, model in self._sim.models.items():
                 for link in model.links:

@@ -215,7 +215,7 @@ class SimulatorNode:
     def _step_quietly(self) -> None:
         """Step through the steps at which nothing falls due without _advance's checks (call unpaced, under the lock,
         after a reset has been seen): up to the step before the next due time, so that _advance makes the due step."""
-        due = min(self._next_due, self._next_clock, self.api.next_states_time if self.api is not None else math.inf)
+        due = min(self._next_due, self._next_clock, self.api.states_due() if self.api is not None else math.inf)
         quiet = min(quiet_steps(self._now, due, self.sim.physics.time_step), MAX_QUIET_STEPS)
         if quiet > 0:
             step = self.sim.step
