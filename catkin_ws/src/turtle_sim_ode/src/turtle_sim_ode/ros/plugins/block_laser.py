@@ -13,7 +13,7 @@ from sensor_msgs.msg import ChannelFloat32, PointCloud
 
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, publisher
 from turtle_sim_ode.ros.plugin_topics import period, resolve_frame
-from turtle_sim_ode.ros.wire import release
+from turtle_sim_ode.ros.wire import heard, release
 from turtle_sim_ode.sensors.lidar import MultiBeamLidar
 from turtle_sim_ode.sensors.plugins.block_laser import BlockLaserConfig, block_points
 
@@ -29,7 +29,7 @@ class BlockLaserPublisher(Periodic):
         self._frame = resolve_frame(prefix, config.frame)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not self._pub.get_num_connections():
+        if not heard(self._pub):
             return
         points, intensities = block_points(self._lidar.ranges(noisy=False), self._config, self._rng.normal)
         message = PointCloud(points=[Point32(*point) for point in points.tolist()])

@@ -12,7 +12,7 @@ from turtle_sim_ode.models.built import BuiltModel
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, publisher
 from turtle_sim_ode.ros.plugin_topics import own_tf_prefix, period, resolve_frame
-from turtle_sim_ode.ros.wire import release
+from turtle_sim_ode.ros.wire import heard, release
 from turtle_sim_ode.sensors.plugins.bumper import ContactConfig
 from turtle_sim_ode.world.simulation import Simulation
 
@@ -49,7 +49,7 @@ class ContactsPublisher(Periodic):
         return self._names.get(geom, "unknown")
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not self._pub.get_num_connections():
+        if not heard(self._pub):
             return
         pairs: Dict[Tuple[ode.GeomObject, ode.GeomObject], ContactState] = {}
         for contact in self._watch.contacts:

@@ -12,7 +12,7 @@ from geometry_msgs.msg import WrenchStamped
 from turtle_sim_ode.physics.world import PhysicsWorld
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, publisher
 from turtle_sim_ode.ros.plugin_topics import own_tf_prefix, resolve_frame
-from turtle_sim_ode.ros.wire import release
+from turtle_sim_ode.ros.wire import heard, release
 from turtle_sim_ode.world.plugins.f3d import F3dConfig, LinkForce
 
 
@@ -26,7 +26,7 @@ class F3dPublisher(Periodic):
         self._message.header.frame_id = resolve_frame(own_tf_prefix(namespace), config.frame)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not self._pub.get_num_connections():
+        if not heard(self._pub):
             return
         force, torque = self._reader.wrench(self._physics.time_step)
         message = self._message

@@ -10,7 +10,7 @@ from geometry_msgs.msg import WrenchStamped
 
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, publisher
 from turtle_sim_ode.ros.plugin_topics import own_tf_prefix, period, resolve_frame
-from turtle_sim_ode.ros.wire import release
+from turtle_sim_ode.ros.wire import heard, release
 from turtle_sim_ode.world.plugins.ft_sensor import FtSensorConfig, JointWrench, sensor_joint
 from turtle_sim_ode.world.plugins.p3d import noisy
 
@@ -25,7 +25,7 @@ class FtSensorPublisher(Periodic):
         self._message.header.frame_id = resolve_frame(own_tf_prefix(namespace), reader.child)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not self._pub.get_num_connections():
+        if not heard(self._pub):
             return
         force, torque = self._reader.wrench()
         message = self._message

@@ -23,7 +23,7 @@ class JointStatePublisher(Periodic):
         self._pub = packed_publisher(topic_prefix(namespace) + "joint_states", JointState)
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not self._pub.get_num_connections():
+        if not self._pub.heard():
             return
         handles = self._handles
         positions = [handle.angle() for handle in handles]

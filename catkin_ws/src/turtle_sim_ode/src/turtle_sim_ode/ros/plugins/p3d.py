@@ -62,7 +62,7 @@ class GroundTruthPublisher(Periodic):
         )
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not self._pub.get_num_connections():
+        if not self._pub.heard():
             return
         (px, py, pz), (w, x, y, z) = self._model.link_transform(self._link)
         linear, angular = self._model.link_twist(self._link)

@@ -10,7 +10,7 @@ from sensor_msgs.msg import Range
 
 from turtle_sim_ode.ros.periodic import ModelContext, Periodic, plugin_topic, publisher
 from turtle_sim_ode.ros.plugin_topics import period, resolve_frame
-from turtle_sim_ode.ros.wire import release
+from turtle_sim_ode.ros.wire import heard, release
 from turtle_sim_ode.sensors.lidar import MultiBeamLidar
 from turtle_sim_ode.sensors.plugins.range_finder import RangeConfig, nearest
 
@@ -29,7 +29,7 @@ class RangePublisher(Periodic):
         self._message = message
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not self._pub.get_num_connections():
+        if not heard(self._pub):
             return
         config = self._config
         self._message.range = nearest(self._lidar.ranges(), config.range_max, config.gaussian_noise, self._rng.gauss)

@@ -52,7 +52,7 @@ class VelodynePublisher(Periodic):
         self.scans = 0  # scans cast: none while no one subscribes
 
     def publish(self, stamp: rospy.Time, now: float) -> None:
-        if not self._pub.get_num_connections():
+        if not self._pub.heard():
             return
         self._scans.scan((stamp.secs, stamp.nsecs))
         self.scans += 1
