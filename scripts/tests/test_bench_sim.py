@@ -66,7 +66,19 @@ def test_machine_peer_and_targets_are_recorded(results):
     machine = results["machine"]
     assert machine["nproc"] >= 1 and machine["cpu_model"] and machine["python"]
     assert results["peer"]["status"] == "skipped"
-    assert len(results["targets"]) == 17
+    assert len(results["targets"]) == 18
+
+
+def test_the_node_and_physics_only_are_measured_in_turns(results):
+    """1 robot at 1 ms: each turn's node RTF over the physics-only RTF measured just before it (probe.in_turns)."""
+    one_1ms = next(run for run in results["full_node"]["runs"] if (run["robots"], run["time_step"]) == (1, 0.001))
+    turns = one_1ms["in_turns"]
+    assert len(turns["ratios"]) == len(turns["physics_rtf"]) == len(turns["node_rtf"]) == 5
+    for ratio, node, physics in zip(turns["ratios"], turns["node_rtf"], turns["physics_rtf"]):
+        assert ratio == pytest.approx(node / physics)
+    assert min(turns["ratios"]) <= turns["median_ratio"] <= max(turns["ratios"])
+    target = next(row for row in results["targets"] if row["target"] == "1 TurtleBot, 1 ms: the same in turns (median)")
+    assert target["value"] == turns["median_ratio"]
 
 
 def test_camera_runs_render_at_their_rate_only_when_watched(results):

@@ -15,6 +15,7 @@ from ros_run.processes import Processes
 
 
 UNBATCHED = {"write_batch_period": 0.0}  # every message written when published
+TURNS = 5  # 1 TurtleBot at 1 ms: the node and physics only in turns, a window's length each (probe.in_turns)
 
 
 def package_config(name: str) -> Dict[str, Any]:
@@ -47,10 +48,11 @@ def node_rtf(
     watch_camera: bool = False,
     watch_scene: bool = False,
     settings: Optional[Dict[str, Any]] = None,
+    turns: int = 0,
 ) -> Dict[str, Any]:
     """RTF and /clock intervals of the node in empty_world.launch with ``robots`` TurtleBots spawned (the first in
     a ``room``, with ``camera``, a viewer's scene subscriber with ``watch_scene``: see bench_probe.measure_rtf_task),
-    with ``settings`` over config/simulator.yaml's."""
+    with ``settings`` over config/simulator.yaml's; ``turns``: then also against physics only in turns."""
     physics = dict(package_config("physics.yaml"), time_step=time_step)
     config = dict(package_config("simulator.yaml"), **(settings or {}))
     config["diff_drive"]["cmd_timeout"] = 0.0  # commands are sent once: the drives must not time out, at any RTF
@@ -61,9 +63,10 @@ def node_rtf(
             "empty_world.launch",
             ["real_time_factor:=%g" % real_time_factor, "physics:=" + physics_path, "config:=" + config_path],
         )
-        with Probe(ros, measure_rtf_task, robots, warmup, window, room, camera, watch_camera, watch_scene) as probe:
+        task = (measure_rtf_task, robots, warmup, window, room, camera, watch_camera, watch_scene, turns)
+        with Probe(ros, *task) as probe:
             try:
-                result = probe.receive(2 * STARTUP_TIMEOUT_S + warmup + window)
+                result = probe.receive(2 * STARTUP_TIMEOUT_S + 2 * (warmup + window) + 3 * window)
             except BenchError as error:
                 raise ros.failure(launch, error) from None
     result.update(time_step=time_step, real_time_factor=real_time_factor)
@@ -78,7 +81,8 @@ def full_node(plan: Plan, processes: Processes) -> Dict[str, Any]:
         for robots in plan.robot_counts:
             name = "rtf-%drobots-%gms" % (robots, time_step * 1e3)
             print("  full node: %d robot(s), %g ms ..." % (robots, time_step * 1e3), flush=True)
-            run = node_rtf(processes, name, robots, time_step, 0.0, plan.warmup_s, plan.window_s)
+            turns = TURNS if (robots, time_step) == (1, 0.001) else 0  # issue #33's target, against physics only
+            run = node_rtf(processes, name, robots, time_step, 0.0, plan.warmup_s, plan.window_s, turns=turns)
             run["steps_per_s"] = run["rtf"] / time_step
             run["wall_ms_per_sim_s"] = 1e3 / run["rtf"]
             run["wall_ms_per_sim_s_per_robot"] = run["wall_ms_per_sim_s"] / robots

@@ -142,8 +142,8 @@ def circle_track(seconds: float) -> List[Tuple[float, float]]:
 
 
 def sustained_steps_per_second(step: Callable[[], None], seconds: float) -> float:
-    """Steps/s of ``step`` over ``seconds`` of wall time in one go: a rate measured as the node's is, with whatever
-    the machine does meanwhile (best_steps_per_second keeps the luckiest of short runs instead)."""
+    """Steps/s of ``step`` over ``seconds`` of wall time in one go, as the node's rate is measured (probe.in_turns);
+    best_steps_per_second keeps the quickest of short runs instead."""
     steps, start = 0, time.perf_counter()
     while time.perf_counter() - start < seconds:
         for _ in range(1000):
@@ -153,8 +153,7 @@ def sustained_steps_per_second(step: Callable[[], None], seconds: float) -> floa
 
 
 def physics_only(plan: Plan) -> Dict[str, Any]:
-    """Section 1: our steps/s (the best of short runs, and sustained over a full-node window), the bare PyODE
-    floor's, and the circle radius we drive."""
+    """Section 1: our steps/s, the bare PyODE floor's, and the circle radius we drive."""
     sim, in_python = turtlebot_simulation(), turtlebot_simulation(contact_kernel=False)
     if not sim.physics.uses_contact_kernel:
         raise BenchError("the contact kernel (libturtle_sim_ode_contacts.so) is not built: run scripts/build.sh")
@@ -165,7 +164,6 @@ def physics_only(plan: Plan) -> Dict[str, Any]:
     ours, floor, python_contacts = best_steps_per_second(
         (sim.step, bare.step, in_python.step), plan.physics_steps, plan.physics_repeats
     )
-    sustained = sustained_steps_per_second(sim.step, plan.window_s)
     dt = sim.physics.time_step
     return {
         "time_step": dt,
@@ -175,12 +173,6 @@ def physics_only(plan: Plan) -> Dict[str, Any]:
         "us_per_step": 1e6 / ours,
         "rtf": ours * dt,
         "contacts_per_step": sim.physics.contact_count,
-        "sustained": {
-            "wall_s": plan.window_s,
-            "steps_per_s": sustained,
-            "us_per_step": 1e6 / sustained,
-            "rtf": sustained * dt,
-        },
         "bare_pyode": {
             "steps_per_s": floor,
             "us_per_step": 1e6 / floor,

@@ -103,12 +103,14 @@ def measure_rtf_task(
     camera: Optional[Tuple[int, int, float]] = None,
     watch_camera: bool = False,
     watch_scene: bool = False,
+    turns: int = 0,
 ) -> None:
     """Spawn ``robots`` TurtleBots driving circles, subscribe to all they publish, and send the RTF, /clock
     intervals and message rates over a window of ``window_s`` wall seconds after ``warmup_s``. With ``room`` the
     first robot drives in bench_camera's furnished room; with ``camera`` (width, height, rate Hz) it carries
     bench_camera's RGB-D camera; ``watch_camera``: its image, depth image and cloud are subscribed too; ``watch_scene``:
-    the viewer's /gazebo/scene_markers too (read whole, as rviz reads it)."""
+    the viewer's /gazebo/scene_markers too (read whole, as rviz reads it). ``turns`` > 0: then also the node's RTF
+    against physics only in turns (``in_turns``)."""
     import rospy
     from gazebo_msgs.srv import SpawnModel
     from geometry_msgs.msg import Point, Pose, Quaternion, Twist
@@ -184,15 +186,14 @@ def measure_rtf_task(
         time.sleep(window_s)
         end_counts, end, end_cpu = counts(), time.monotonic(), cpu_seconds(simulator)
         last = {stream.topic: stream.last for stream in streams}
+        turned = in_turns(clock, turns, window_s / turns, warmup_s / turns) if turns else None
     finally:
         for reader in readers:
             reader.close()
     errors = [reader.error for reader in readers if reader.error is not None]
     if errors:
         raise BenchError("reading the topics failed: %s" % errors[0])
-    window = [(wall, sim) for wall, sim in list(clock) if start <= wall <= end]
-    if len(window) < 2:
-        raise BenchError("only %d /clock messages in %.1f wall seconds" % (len(window), window_s))
+    window = clock_window(clock, start, end)
     wall_s, sim_s = window[-1][0] - window[0][0], window[-1][1] - window[0][1]
     per_kind: Dict[str, int] = {}
     for topic, kind in topics.items():
@@ -215,8 +216,53 @@ def measure_rtf_task(
             # Odometry of the slowest robot: all drive their circles.
             "slowest_odom_speed_m_s": min(twist.linear.x for twist in odometry),
             "slowest_odom_turn_rad_s": min(twist.angular.z for twist in odometry),
+            **({"in_turns": turned} if turned else {}),
         }
     )
+
+
+def clock_window(clock: List[Tuple[float, float]], start: float, end: float) -> List[Tuple[float, float]]:
+    """The (wall, sim) /clock arrivals from wall time ``start`` to ``end``; BenchError with fewer than two."""
+    window = [(wall, sim) for wall, sim in list(clock) if start <= wall <= end]
+    if len(window) < 2:
+        raise BenchError("only %d /clock messages in %.1f wall seconds" % (len(window), end - start))
+    return window
+
+
+def in_turns(clock: List[Tuple[float, float]], turns: int, window_s: float, warmup_s: float) -> Dict[str, Any]:
+    """The node's RTF and physics only's in turns: ``turns`` times, the node paused (/gazebo/pause_physics), this
+    process steps a TurtleBot of its own (bench.physics, Simulation.step, no ROS) for ``window_s`` wall seconds; then
+    the node runs again and its RTF is read from /clock over ``window_s`` after ``warmup_s``. Both see the machine of
+    the same minute; each turn's ratio is the node's RTF over the physics-only RTF just before it."""
+    import rospy
+    from std_srvs.srv import Empty
+
+    from bench.physics import SETTLE_STEPS, sustained_steps_per_second, turtlebot_simulation
+
+    rospy.wait_for_service("/gazebo/pause_physics", STARTUP_TIMEOUT_S)
+    pause = rospy.ServiceProxy("/gazebo/pause_physics", Empty)
+    unpause = rospy.ServiceProxy("/gazebo/unpause_physics", Empty)
+    sim = turtlebot_simulation()
+    for _ in range(SETTLE_STEPS):
+        sim.step()
+    physics_rtfs, node_rtfs = [], []
+    for _ in range(turns):
+        pause()
+        physics_rtfs.append(sustained_steps_per_second(sim.step, window_s) * sim.physics.time_step)
+        unpause()
+        time.sleep(warmup_s)
+        start = time.monotonic()
+        time.sleep(window_s)
+        window = clock_window(clock, start, time.monotonic())
+        node_rtfs.append((window[-1][1] - window[0][1]) / (window[-1][0] - window[0][0]))
+    ratios = [node / physics for node, physics in zip(node_rtfs, physics_rtfs)]
+    return {
+        "window_s": window_s,
+        "physics_rtf": physics_rtfs,
+        "node_rtf": node_rtfs,
+        "ratios": ratios,
+        "median_ratio": statistics.median(ratios),
+    }
 
 
 def first_odom_task(send: Callable[[Any], None]) -> None:
