@@ -66,7 +66,9 @@ def node_rtf(
         task = (measure_rtf_task, robots, warmup, window, room, camera, watch_camera, watch_scene, turns)
         with Probe(ros, *task) as probe:
             try:
-                result = probe.receive(2 * STARTUP_TIMEOUT_S + 2 * (warmup + window) + 3 * window)
+                # turns: a warmup and two windows more in all (probe.in_turns), and a TurtleBot of the probe's own
+                in_turns = warmup + 2 * window + STARTUP_TIMEOUT_S if turns else 0.0
+                result = probe.receive(2 * STARTUP_TIMEOUT_S + warmup + window + in_turns)
             except BenchError as error:
                 raise ros.failure(launch, error) from None
     result.update(time_step=time_step, real_time_factor=real_time_factor)

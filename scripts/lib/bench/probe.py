@@ -194,7 +194,7 @@ def measure_rtf_task(
     if errors:
         raise BenchError("reading the topics failed: %s" % errors[0])
     window = clock_window(clock, start, end)
-    wall_s, sim_s = window[-1][0] - window[0][0], window[-1][1] - window[0][1]
+    wall_s, sim_s = spans(window)
     per_kind: Dict[str, int] = {}
     for topic, kind in topics.items():
         if kind != "clock":
@@ -229,6 +229,11 @@ def clock_window(clock: List[Tuple[float, float]], start: float, end: float) -> 
     return window
 
 
+def spans(window: List[Tuple[float, float]]) -> Tuple[float, float]:
+    """Wall and sim seconds from the first to the last /clock arrival of ``window``."""
+    return window[-1][0] - window[0][0], window[-1][1] - window[0][1]
+
+
 def in_turns(clock: List[Tuple[float, float]], turns: int, window_s: float, warmup_s: float) -> Dict[str, Any]:
     """The node's RTF and physics only's in turns: ``turns`` times, the node paused (/gazebo/pause_physics), this
     process steps a TurtleBot of its own (bench.physics, Simulation.step, no ROS) for ``window_s`` wall seconds; then
@@ -253,8 +258,8 @@ def in_turns(clock: List[Tuple[float, float]], turns: int, window_s: float, warm
         time.sleep(warmup_s)
         start = time.monotonic()
         time.sleep(window_s)
-        window = clock_window(clock, start, time.monotonic())
-        node_rtfs.append((window[-1][1] - window[0][1]) / (window[-1][0] - window[0][0]))
+        wall_s, sim_s = spans(clock_window(clock, start, time.monotonic()))
+        node_rtfs.append(sim_s / wall_s)
     ratios = [node / physics for node, physics in zip(node_rtfs, physics_rtfs)]
     return {
         "window_s": window_s,
